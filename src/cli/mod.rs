@@ -1,0 +1,78 @@
+//! Command-line arguments and dispatch. Every user error comes back as an `anyhow` error that
+//! names the file, line or field; `main` prints it and exits with code 2.
+
+mod info;
+mod render;
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use clap::{Parser, Subcommand};
+use rastray::Scene;
+use rastray::render::{Algorithm, Size};
+
+/// Build small 3D scenes in the terminal and render them with a Z-buffer (Gouraud or Phong) or a
+/// Whitted ray tracer.
+#[derive(Debug, Parser)]
+#[command(name = "rastray", version, args_conflicts_with_subcommands = true)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// Scene file to open (the built-in default scene when absent).
+    pub scene: Option<PathBuf>,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Render a scene to a PNG file.
+    Render(render::RenderArgs),
+    /// Print a scene's objects, triangle counts and bounds.
+    Info {
+        /// Scene file.
+        scene: PathBuf,
+    },
+}
+
+/// Runs the parsed command.
+pub fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Some(Command::Render(args)) => render::run(&args),
+        Some(Command::Info { scene }) => info::run(&scene),
+        None => open_default(cli.scene.as_deref()),
+    }
+}
+
+/// Without a subcommand: renders the scene (or the default one) to `rastray.png` and says where.
+fn open_default(scene: Option<&Path>) -> anyhow::Result<()> {
+    let args = render::RenderArgs {
+        scene: scene.map(Path::to_path_buf),
+        algorithm: Algorithm::Phong,
+        size: "1280x720".parse().expect("a valid size"),
+        samples: 2,
+        max_depth: None,
+        no_shadows: false,
+        output: PathBuf::from("rastray.png"),
+    };
+    render::run(&args)
+}
+
+/// Loads the scene at `path`, or the built-in default scene; returns it with the directory its
+/// OBJ paths are relative to.
+pub fn load_scene(path: Option<&Path>) -> anyhow::Result<(Scene, PathBuf)> {
+    match path {
+        Some(path) => {
+            let scene = rastray::scene::load(path)?;
+            let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+            Ok((scene, base))
+        }
+        None => Ok((
+            rastray::scene::default_scene(),
+            std::env::current_dir().context("no working directory")?,
+        )),
+    }
+}
+
+/// Parses WIDTHxHEIGHT for clap.
+pub fn parse_size(s: &str) -> Result<Size, String> {
+    s.parse::<Size>().map_err(|e| e.to_string())
+}

@@ -1,0 +1,17 @@
+//! rastray: build small 3D scenes, render them with a Z-buffer (Gouraud or Phong shading) or a
+//! Whitted ray tracer, and compare the three.
+//!
+//! The pipeline is `Scene` (TOML model) → [`World`] (world-space face lists with normals) →
+//! [`render::render`] → [`render::Frame`] (linear RGB) → PNG or terminal preview.
+#![forbid(unsafe_code)]
+
+pub mod atomic_file;
+pub mod export;
+pub mod mesh;
+pub mod render;
+pub mod scene;
+pub mod world;
+
+pub use render::{Algorithm, Frame, RenderOptions, render};
+pub use scene::Scene;
+pub use world::World;

@@ -1,0 +1,99 @@
+//! The mesh representation every renderer reads.
+
+use glam::{Affine3A, Vec3};
+
+/// Indexed triangles with one unit normal per vertex.
+///
+/// Invariants: `normals.len() == positions.len()`; every index is `< positions.len()`;
+/// triangles of closed shapes wind counter-clockwise seen from outside.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions, world units.
+    pub positions: Vec<Vec3>,
+    /// Unit vertex normals, one per position.
+    pub normals: Vec<Vec3>,
+    /// Vertex indices of each triangle.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// A bounding sphere: centre and radius in world units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sphere {
+    pub center: Vec3,
+    pub radius: f32,
+}
+
+impl Mesh {
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// The three corner positions of triangle `t`.
+    #[inline]
+    pub fn corners(&self, t: usize) -> [Vec3; 3] {
+        let [a, b, c] = self.triangles[t];
+        [
+            self.positions[a as usize],
+            self.positions[b as usize],
+            self.positions[c as usize],
+        ]
+    }
+
+    /// Sum of the triangles' areas, square world units.
+    pub fn surface_area(&self) -> f32 {
+        (0..self.triangles.len())
+            .map(|t| {
+                let [a, b, c] = self.corners(t);
+                0.5 * (b - a).cross(c - a).length()
+            })
+            .sum()
+    }
+
+    /// Axis-aligned bounds (min, max); `None` for an empty mesh.
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let first = *self.positions.first()?;
+        Some(
+            self.positions
+                .iter()
+                .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p))),
+        )
+    }
+
+    /// A sphere enclosing every vertex: centred on the bounds' centre.
+    pub fn bounding_sphere(&self) -> Sphere {
+        let Some((lo, hi)) = self.bounds() else {
+            return Sphere {
+                center: Vec3::ZERO,
+                radius: 0.0,
+            };
+        };
+        let center = (lo + hi) * 0.5;
+        let radius = self
+            .positions
+            .iter()
+            .map(|p| p.distance(center))
+            .fold(0.0, f32::max);
+        Sphere { center, radius }
+    }
+
+    /// The mesh moved by `transform` (a rotation, uniform scale and translation).
+    pub fn transformed(mut self, transform: Affine3A) -> Mesh {
+        for p in &mut self.positions {
+            *p = transform.transform_point3(*p);
+        }
+        for n in &mut self.normals {
+            *n = transform.transform_vector3(*n).normalize_or_zero();
+        }
+        self
+    }
+
+    /// Appends `other`'s vertices and triangles.
+    pub fn append(&mut self, other: &Mesh) {
+        let base = self.positions.len() as u32;
+        self.positions.extend_from_slice(&other.positions);
+        self.normals.extend_from_slice(&other.normals);
+        self.triangles
+            .extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
+    }
+}

@@ -1,0 +1,19 @@
+//! Face-list meshes: indexed triangles with per-vertex normals, and the shapes that make them.
+
+mod cuboid;
+mod face_list;
+mod icosahedron;
+mod normals;
+mod obj;
+mod patch;
+mod prism;
+mod tessellate;
+
+pub use cuboid::cuboid;
+pub use face_list::{Mesh, Sphere};
+pub use icosahedron::icosahedron;
+pub use normals::{CREASE_ANGLE_DEGREES, with_normals};
+pub use obj::{ObjModel, load_obj};
+pub use patch::FaceList;
+pub use prism::prism;
+pub use tessellate::{object_transform, tessellate};

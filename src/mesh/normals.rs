@@ -1,0 +1,125 @@
+//! Vertex normals: flat (one normal per face, vertices split) or smooth within a crease angle.
+
+use glam::Vec3;
+
+use super::face_list::Mesh;
+
+/// Adjacent faces meeting at less than this angle share a smoothed normal, degrees.
+pub const CREASE_ANGLE_DEGREES: f32 = 60.0;
+
+/// Builds a [`Mesh`] from welded `positions` and `triangles`.
+///
+/// Flat: every triangle gets its own three vertices carrying the face normal.
+/// Smooth: each corner's normal is the area-weighted sum of the normals of the faces around that
+/// vertex that meet its own face at less than [`CREASE_ANGLE_DEGREES`]; corners that end with the
+/// same normal share one vertex. Degenerate faces (zero area) take the normal of a neighbour or +Y.
+pub fn with_normals(positions: &[Vec3], triangles: &[[u32; 3]], smooth: bool) -> Mesh {
+    // Area-weighted face normals (the cross product's length is twice the area).
+    let weighted: Vec<Vec3> = triangles
+        .iter()
+        .map(|&[a, b, c]| {
+            let (a, b, c) = (
+                positions[a as usize],
+                positions[b as usize],
+                positions[c as usize],
+            );
+            (b - a).cross(c - a)
+        })
+        .collect();
+    let unit: Vec<Vec3> = weighted.iter().map(|n| n.normalize_or_zero()).collect();
+    if smooth {
+        smooth_normals(positions, triangles, &weighted, &unit)
+    } else {
+        flat_normals(positions, triangles, &unit)
+    }
+}
+
+fn flat_normals(positions: &[Vec3], triangles: &[[u32; 3]], unit: &[Vec3]) -> Mesh {
+    let mut mesh = Mesh {
+        positions: Vec::with_capacity(triangles.len() * 3),
+        normals: Vec::with_capacity(triangles.len() * 3),
+        triangles: Vec::with_capacity(triangles.len()),
+    };
+    for (t, tri) in triangles.iter().enumerate() {
+        let n = if unit[t] == Vec3::ZERO {
+            Vec3::Y
+        } else {
+            unit[t]
+        };
+        let base = mesh.positions.len() as u32;
+        for &i in tri {
+            mesh.positions.push(positions[i as usize]);
+            mesh.normals.push(n);
+        }
+        mesh.triangles.push([base, base + 1, base + 2]);
+    }
+    mesh
+}
+
+fn smooth_normals(
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    weighted: &[Vec3],
+    unit: &[Vec3],
+) -> Mesh {
+    let cos_crease = CREASE_ANGLE_DEGREES.to_radians().cos();
+    // Faces around each vertex, as compressed rows: faces_of[start[v]..start[v + 1]].
+    let mut start = vec![0u32; positions.len() + 1];
+    for tri in triangles {
+        for &v in tri {
+            start[v as usize + 1] += 1;
+        }
+    }
+    for v in 0..positions.len() {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut faces_of = vec![0u32; triangles.len() * 3];
+    for (t, tri) in triangles.iter().enumerate() {
+        for &v in tri {
+            faces_of[fill[v as usize] as usize] = t as u32;
+            fill[v as usize] += 1;
+        }
+    }
+
+    let mut mesh = Mesh {
+        positions: Vec::with_capacity(positions.len()),
+        normals: Vec::with_capacity(positions.len()),
+        triangles: Vec::with_capacity(triangles.len()),
+    };
+    // For each welded vertex, the output vertices made for it so far (normal, index).
+    let mut made: Vec<Vec<(Vec3, u32)>> = vec![Vec::new(); positions.len()];
+    for (t, tri) in triangles.iter().enumerate() {
+        let mut out = [0u32; 3];
+        for (corner, &v) in tri.iter().enumerate() {
+            let around = &faces_of[start[v as usize] as usize..start[v as usize + 1] as usize];
+            let mut sum = Vec3::ZERO;
+            for &g in around {
+                if unit[t] == Vec3::ZERO || unit[g as usize].dot(unit[t]) >= cos_crease {
+                    sum += weighted[g as usize];
+                }
+            }
+            let mut n = sum.normalize_or_zero();
+            if n == Vec3::ZERO {
+                n = around
+                    .iter()
+                    .map(|&g| unit[g as usize])
+                    .find(|u| *u != Vec3::ZERO)
+                    .unwrap_or(Vec3::Y);
+            }
+            let slot = &mut made[v as usize];
+            out[corner] = match slot.iter().find(|(m, _)| *m == n) {
+                Some(&(_, index)) => index,
+                None => {
+                    let index = mesh.positions.len() as u32;
+                    mesh.positions.push(positions[v as usize]);
+                    mesh.normals.push(n);
+                    slot.push((n, index));
+                    index
+                }
+            };
+        }
+        mesh.triangles.push(out);
+    }
+    mesh
+}

@@ -1,0 +1,65 @@
+//! Flat patches split into grids: the faces of boxes and prisms. Splitting adds faces without
+//! changing the area, which the face-count experiment needs.
+
+use glam::Vec3;
+
+/// Welded vertices and triangles under construction.
+#[derive(Debug, Default)]
+pub struct FaceList {
+    pub positions: Vec<Vec3>,
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl FaceList {
+    /// Adds the parallelogram `origin + s·u + t·v` (s, t in [0, 1]) as a `segments`×`segments`
+    /// grid of quads, two triangles each, wound counter-clockwise seen from `u × v`.
+    pub fn quad(&mut self, origin: Vec3, u: Vec3, v: Vec3, segments: u32) {
+        let n = segments.max(1);
+        let base = self.positions.len() as u32;
+        for row in 0..=n {
+            for col in 0..=n {
+                let (s, t) = (col as f32 / n as f32, row as f32 / n as f32);
+                self.positions.push(origin + u * s + v * t);
+            }
+        }
+        let at = |row: u32, col: u32| base + row * (n + 1) + col;
+        for row in 0..n {
+            for col in 0..n {
+                let (a, b, c, d) = (
+                    at(row, col),
+                    at(row, col + 1),
+                    at(row + 1, col + 1),
+                    at(row + 1, col),
+                );
+                self.triangles.push([a, b, c]);
+                self.triangles.push([a, c, d]);
+            }
+        }
+    }
+
+    /// Adds triangle `a, b, c` split into `segments`² similar triangles, wound like `a, b, c`.
+    pub fn triangle(&mut self, a: Vec3, b: Vec3, c: Vec3, segments: u32) {
+        let n = segments.max(1);
+        let base = self.positions.len() as u32;
+        // Row r (0 at edge ab, n at apex c) holds n − r + 1 vertices.
+        let mut row_start = Vec::with_capacity(n as usize + 1);
+        for r in 0..=n {
+            row_start.push(self.positions.len() as u32 - base);
+            let t = r as f32 / n as f32;
+            for k in 0..=(n - r) {
+                let s = k as f32 / n as f32;
+                self.positions.push(a + (b - a) * s + (c - a) * t);
+            }
+        }
+        let at = |r: u32, k: u32| base + row_start[r as usize] + k;
+        for r in 0..n {
+            for k in 0..(n - r) {
+                self.triangles.push([at(r, k), at(r, k + 1), at(r + 1, k)]);
+                if k + 1 < n - r {
+                    self.triangles
+                        .push([at(r, k + 1), at(r + 1, k + 1), at(r + 1, k)]);
+                }
+            }
+        }
+    }
+}

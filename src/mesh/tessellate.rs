@@ -1,0 +1,82 @@
+//! Turning a scene object into a world-space [`Mesh`].
+
+use std::collections::HashMap;
+
+use glam::{Affine3A, EulerRot, Quat, Vec3};
+
+use super::cuboid::cuboid;
+use super::face_list::Mesh;
+use super::icosahedron::icosahedron;
+use super::normals::with_normals;
+use super::obj::ObjModel;
+use super::prism::prism;
+use crate::scene::{Object, Shape};
+
+/// The object's placement: rotation (Euler degrees, X then Y then Z) about its centre, then the
+/// move to its centre.
+pub fn object_transform(object: &Object) -> Affine3A {
+    let r = object.rotation * (std::f32::consts::PI / 180.0);
+    let rotation = Quat::from_euler(EulerRot::ZYX, r.z, r.y, r.x);
+    Affine3A::from_rotation_translation(rotation, object.shape.center())
+}
+
+/// The object's world-space mesh. A mesh object needs its loaded `obj` model.
+///
+/// # Panics
+/// If `object` is a mesh and `obj` is `None` (a caller bug: the world loads models first).
+pub fn tessellate(object: &Object, obj: Option<&ObjModel>) -> Mesh {
+    let transform = object_transform(object);
+    let local = match &object.shape {
+        Shape::Icosahedron {
+            radius,
+            subdivisions,
+            ..
+        } => {
+            let f = icosahedron(*radius, *subdivisions);
+            with_normals(&f.positions, &f.triangles, object.smooth)
+        }
+        Shape::Box { size, segments, .. } => {
+            let f = cuboid(*size, *segments);
+            with_normals(&f.positions, &f.triangles, object.smooth)
+        }
+        Shape::Prism { size, segments, .. } => {
+            let f = prism(*size, *segments);
+            with_normals(&f.positions, &f.triangles, object.smooth)
+        }
+        Shape::Mesh { scale, .. } => {
+            let model = obj.expect("mesh objects are tessellated with their OBJ model");
+            let (lo, hi) = model.bounds();
+            let centre = (lo + hi) * 0.5;
+            let positions: Vec<Vec3> = model
+                .positions
+                .iter()
+                .map(|&p| (p - centre) * *scale)
+                .collect();
+            match (&model.corner_normals, object.smooth) {
+                (Some(normals), true) => with_file_normals(&positions, &model.triangles, normals),
+                _ => with_normals(&positions, &model.triangles, object.smooth),
+            }
+        }
+    };
+    local.transformed(transform)
+}
+
+/// A mesh using the file's own corner normals; corners with equal position and normal share a vertex.
+fn with_file_normals(positions: &[Vec3], triangles: &[[u32; 3]], normals: &[[Vec3; 3]]) -> Mesh {
+    let mut mesh = Mesh::default();
+    let mut index: HashMap<(u32, [u32; 3]), u32> = HashMap::with_capacity(positions.len());
+    for (tri, corner_normals) in triangles.iter().zip(normals) {
+        let mut out = [0u32; 3];
+        for k in 0..3 {
+            let n = corner_normals[k];
+            let key = (tri[k], n.to_array().map(f32::to_bits));
+            out[k] = *index.entry(key).or_insert_with(|| {
+                mesh.positions.push(positions[tri[k] as usize]);
+                mesh.normals.push(n);
+                mesh.positions.len() as u32 - 1
+            });
+        }
+        mesh.triangles.push(out);
+    }
+    mesh
+}

@@ -1,0 +1,86 @@
+//! The camera as every renderer sees it: one projection shared by rays and rasterizer.
+//!
+//! Pixel (i, j), j = 0 the top row, has its centre at (i + 0.5, j + 0.5). Normalised device
+//! coordinates are x = 2(i + 0.5)/W − 1 and y = 1 − 2(j + 0.5)/H. The rasterizer projects a vertex
+//! to exactly the continuous pixel coordinates whose primary ray passes through it.
+
+use glam::{Vec2, Vec3};
+
+use crate::scene::Camera;
+
+/// Distance of the near clipping plane in front of the eye, world units.
+pub const NEAR: f32 = 1.0e-3;
+
+/// A camera fixed to an image size.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct View {
+    /// Eye position, world units.
+    pub eye: Vec3,
+    /// Unit view direction.
+    pub forward: Vec3,
+    /// Unit right vector, perpendicular to `forward`.
+    pub right: Vec3,
+    /// Unit up vector, perpendicular to both.
+    pub up: Vec3,
+    /// tan(fov / 2): half the image height at distance 1.
+    pub tan_half_fov: f32,
+    /// Width / height.
+    pub aspect: f32,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+}
+
+impl View {
+    /// The view of `camera` on a `width`×`height` image (both ≥ 1).
+    pub fn new(camera: &Camera, width: u32, height: u32) -> View {
+        let forward = (camera.target - camera.position).normalize();
+        let right = forward.cross(camera.up).normalize();
+        let up = right.cross(forward);
+        View {
+            eye: camera.position,
+            forward,
+            right,
+            up,
+            tan_half_fov: (camera.fov.to_radians() * 0.5).tan(),
+            aspect: width as f32 / height as f32,
+            width,
+            height,
+        }
+    }
+
+    /// Unit direction of the ray through continuous pixel coordinates (x, y); the centre of pixel
+    /// (i, j) is (i + 0.5, j + 0.5).
+    #[inline]
+    pub fn ray_direction(&self, x: f32, y: f32) -> Vec3 {
+        let ndc_x = 2.0 * x / self.width as f32 - 1.0;
+        let ndc_y = 1.0 - 2.0 * y / self.height as f32;
+        (self.forward
+            + self.right * (ndc_x * self.tan_half_fov * self.aspect)
+            + self.up * (ndc_y * self.tan_half_fov))
+            .normalize()
+    }
+
+    /// Homogeneous clip coordinates (x, y, w) of world point `p`: w is the depth along the view
+    /// direction, and x/w, y/w are normalised device coordinates.
+    #[inline]
+    pub fn to_clip(&self, p: Vec3) -> Vec3 {
+        let d = p - self.eye;
+        Vec3::new(
+            d.dot(self.right) / (self.tan_half_fov * self.aspect),
+            d.dot(self.up) / self.tan_half_fov,
+            d.dot(self.forward),
+        )
+    }
+
+    /// Continuous pixel coordinates of a clip-space point with w > 0.
+    #[inline]
+    pub fn clip_to_pixel(&self, c: Vec3) -> Vec2 {
+        let inv_w = 1.0 / c.z;
+        Vec2::new(
+            (c.x * inv_w + 1.0) * 0.5 * self.width as f32,
+            (1.0 - c.y * inv_w) * 0.5 * self.height as f32,
+        )
+    }
+}

@@ -1,0 +1,91 @@
+//! A rendered image in linear RGB, and its 8-bit sRGB encoding.
+
+use glam::Vec3;
+
+/// A `width`×`height` image of linear RGB, row-major from the top-left pixel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    pub width: u32,
+    pub height: u32,
+    /// `width·height` linear RGB values (not clamped).
+    pub pixels: Vec<Vec3>,
+}
+
+impl Frame {
+    /// A frame filled with `color`.
+    pub fn filled(width: u32, height: u32, color: Vec3) -> Frame {
+        Frame {
+            width,
+            height,
+            pixels: vec![color; width as usize * height as usize],
+        }
+    }
+
+    /// The pixel at column `x`, row `y` (0 = top).
+    #[inline]
+    pub fn pixel(&self, x: u32, y: u32) -> Vec3 {
+        self.pixels[y as usize * self.width as usize + x as usize]
+    }
+
+    /// Averages each `n`×`n` block into one pixel: the box filter of N×N supersampling.
+    pub fn downsample(&self, n: u32) -> Frame {
+        if n <= 1 {
+            return self.clone();
+        }
+        let (w, h) = (self.width / n, self.height / n);
+        let scale = 1.0 / (n * n) as f32;
+        let mut pixels = Vec::with_capacity(w as usize * h as usize);
+        for y in 0..h {
+            for x in 0..w {
+                let mut sum = Vec3::ZERO;
+                for sy in 0..n {
+                    for sx in 0..n {
+                        sum += self.pixel(x * n + sx, y * n + sy);
+                    }
+                }
+                pixels.push(sum * scale);
+            }
+        }
+        Frame {
+            width: w,
+            height: h,
+            pixels,
+        }
+    }
+
+    /// 8-bit sRGB bytes, three per pixel: each channel clamped to [0, 1] then sRGB-encoded.
+    pub fn to_srgb8(&self) -> Vec<u8> {
+        self.pixels
+            .iter()
+            .flat_map(|p| p.to_array().map(encode_srgb))
+            .collect()
+    }
+
+    /// The 8-bit sRGB colour of one pixel.
+    pub fn srgb8_at(&self, x: u32, y: u32) -> [u8; 3] {
+        self.pixel(x, y).to_array().map(encode_srgb)
+    }
+}
+
+/// Linear [0, 1] (clamped) to an 8-bit sRGB code value.
+#[inline]
+pub fn encode_srgb(linear: f32) -> u8 {
+    let c = linear.clamp(0.0, 1.0);
+    let s = if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    };
+    (s * 255.0 + 0.5) as u8
+}
+
+/// An 8-bit sRGB code value back to linear [0, 1].
+#[inline]
+pub fn decode_srgb(code: u8) -> f32 {
+    let s = code as f32 / 255.0;
+    if s <= 0.04045 {
+        s / 12.92
+    } else {
+        ((s + 0.055) / 1.055).powf(2.4)
+    }
+}

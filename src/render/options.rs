@@ -1,0 +1,122 @@
+//! What to render: size, algorithm, samples, and the limits that keep a request sane.
+
+use std::fmt;
+use std::str::FromStr;
+
+use super::algorithm::Algorithm;
+
+/// Largest width or height accepted, pixels.
+pub const MAX_DIMENSION: u32 = 16_384;
+/// Largest number of samples rendered for one image (width·height·samples²).
+pub const MAX_SAMPLES_TOTAL: u64 = 8192 * 8192;
+/// Largest supersampling factor N (N×N samples per pixel).
+pub const MAX_SAMPLES: u32 = 8;
+
+/// An image size in pixels, both sides in 1..=[`MAX_DIMENSION`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Size {
+    pub width: u32,
+    pub height: u32,
+}
+
+/// A size or sample count refused before anything is allocated.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum SizeError {
+    #[error("`{0}` is not a size: write WIDTHxHEIGHT, such as 1920x1080")]
+    Syntax(String),
+    #[error(
+        "{width}x{height} is too large: width and height must each be between 1 and {MAX_DIMENSION}"
+    )]
+    Dimension { width: u64, height: u64 },
+    #[error("{samples} samples per pixel side is out of range: use 1 to {MAX_SAMPLES}")]
+    Samples { samples: u32 },
+    #[error(
+        "{width}x{height} with {samples}x{samples} supersampling needs {total} samples; the limit is {MAX_SAMPLES_TOTAL} (8192x8192)"
+    )]
+    Total {
+        width: u32,
+        height: u32,
+        samples: u32,
+        total: u64,
+    },
+}
+
+impl FromStr for Size {
+    type Err = SizeError;
+
+    fn from_str(s: &str) -> Result<Size, SizeError> {
+        let syntax = || SizeError::Syntax(s.to_string());
+        let (w, h) = s.trim().split_once(['x', 'X', '×']).ok_or_else(syntax)?;
+        let width: u64 = w.trim().parse().map_err(|_| syntax())?;
+        let height: u64 = h.trim().parse().map_err(|_| syntax())?;
+        if !(1..=MAX_DIMENSION as u64).contains(&width)
+            || !(1..=MAX_DIMENSION as u64).contains(&height)
+        {
+            return Err(SizeError::Dimension { width, height });
+        }
+        Ok(Size {
+            width: width as u32,
+            height: height as u32,
+        })
+    }
+}
+
+impl fmt::Display for Size {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}x{}", self.width, self.height)
+    }
+}
+
+/// Everything a render needs besides the world and camera.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RenderOptions {
+    pub algorithm: Algorithm,
+    /// Output width, pixels.
+    pub width: u32,
+    /// Output height, pixels.
+    pub height: u32,
+    /// Supersampling factor N: N×N samples per pixel, box-filtered; 1..=[`MAX_SAMPLES`].
+    pub samples: u32,
+    /// Ray tracer: whether shadow rays are cast (off: every light reaches every point).
+    pub shadows: bool,
+    /// Ray tracer: reflection depth; `None` takes the scene's `max_depth`.
+    pub max_depth: Option<u32>,
+}
+
+impl RenderOptions {
+    /// Options for `algorithm` at `width`×`height`, one sample, shadows on, the scene's depth.
+    pub fn new(algorithm: Algorithm, width: u32, height: u32) -> RenderOptions {
+        RenderOptions {
+            algorithm,
+            width,
+            height,
+            samples: 1,
+            shadows: true,
+            max_depth: None,
+        }
+    }
+
+    /// Checks the size and sample limits.
+    pub fn check(&self) -> Result<(), SizeError> {
+        let (width, height, samples) = (self.width, self.height, self.samples);
+        if !(1..=MAX_DIMENSION).contains(&width) || !(1..=MAX_DIMENSION).contains(&height) {
+            return Err(SizeError::Dimension {
+                width: width as u64,
+                height: height as u64,
+            });
+        }
+        if !(1..=MAX_SAMPLES).contains(&samples) {
+            return Err(SizeError::Samples { samples });
+        }
+        let total = width as u64 * height as u64 * (samples as u64).pow(2);
+        if total > MAX_SAMPLES_TOTAL {
+            return Err(SizeError::Total {
+                width,
+                height,
+                samples,
+                total,
+            });
+        }
+        Ok(())
+    }
+}

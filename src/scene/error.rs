@@ -1,0 +1,38 @@
+//! Errors met while reading, checking or writing a scene. Each names the file, and the line and
+//! key where they are known.
+
+use std::path::PathBuf;
+
+/// A scene that could not be read, checked or written.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// The file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// TOML syntax error, unknown key or wrong type.
+    #[error("{path}{}: {message}", line.map(|l| format!(":{l}")).unwrap_or_default())]
+    Parse {
+        path: PathBuf,
+        line: Option<usize>,
+        message: String,
+    },
+    /// A value out of range (NaN, negative size, coefficient above 1 …).
+    #[error("{path}{}: `{field}` {message}", line.map(|l| format!(":{l}")).unwrap_or_default())]
+    Invalid {
+        path: PathBuf,
+        line: Option<usize>,
+        field: String,
+        message: String,
+    },
+    /// An OBJ model referenced by the scene could not be loaded.
+    #[error("{obj}: cannot load the OBJ model of object[{index}]: {message}")]
+    Obj {
+        index: usize,
+        obj: PathBuf,
+        message: String,
+    },
+}

@@ -1,0 +1,15 @@
+//! The scene model: what a `.toml` scene file holds, how it is read, checked and written.
+
+mod error;
+mod file;
+mod material;
+mod model;
+mod object;
+mod validate;
+
+pub use error::SceneError;
+pub use file::{DEFAULT_SCENE_TOML, default_scene, from_toml_str, load, save, to_toml_string};
+pub use material::Material;
+pub use model::{Camera, Falloff, Light, Scene};
+pub use object::{Object, Shape, ShapeKind};
+pub use validate::{FieldPath, Invalid, validate};
