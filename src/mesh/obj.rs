@@ -24,7 +24,6 @@ pub fn load_obj(path: &Path) -> Result<ObjModel, String> {
         single_index: false,
         ignore_points: true,
         ignore_lines: true,
-        ..Default::default()
     };
     let (models, _materials) = tobj::load_obj_buf(&mut BufReader::new(file), &options, |_| {
         Err(tobj::LoadError::MaterialParseError)

@@ -28,9 +28,9 @@ impl Frame {
     }
 
     /// Averages each `n`×`n` block into one pixel: the box filter of N×N supersampling.
-    pub fn downsample(&self, n: u32) -> Frame {
+    pub fn downsample(self, n: u32) -> Frame {
         if n <= 1 {
-            return self.clone();
+            return self;
         }
         let (w, h) = (self.width / n, self.height / n);
         let scale = 1.0 / (n * n) as f32;

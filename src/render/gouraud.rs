@@ -6,8 +6,8 @@ use rayon::prelude::*;
 use super::camera::View;
 use super::frame::Frame;
 use super::progress::{Cancelled, Progress};
-use super::raster::rasterize;
-use super::zbuffer::{interpolate, lighting, resolve};
+use super::raster::draw;
+use super::zbuffer::{interpolate, lighting};
 use crate::world::World;
 
 /// Renders `world` through `view` (one sample per pixel).
@@ -28,9 +28,8 @@ pub fn render(world: &World, view: &View, progress: &Progress) -> Result<Frame, 
                 .collect()
         })
         .collect();
-    let visible = rasterize(world, view, progress)?;
     // Fragment stage: interpolate the vertex colours.
-    Ok(resolve(world, &visible, |f| {
+    draw(world, view, progress, |f| {
         interpolate(world, f, |o, v| colors[o][v as usize])
-    }))
+    })
 }

@@ -15,6 +15,7 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 use super::camera::{NEAR, View};
+use super::frame::Frame;
 use super::progress::{Cancelled, Progress};
 use crate::world::World;
 
@@ -32,7 +33,7 @@ const SETUP_CHUNK: usize = 4096;
 /// The nearest surface at one pixel centre.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fragment {
-    /// 1/w of the surface: larger is nearer; 0 means nothing was drawn.
+    /// 1/w of the surface (w = depth along the view direction): larger is nearer.
     pub inv_w: f32,
     /// Object index in the world.
     pub object: u32,
@@ -67,14 +68,6 @@ impl Fragment {
     }
 }
 
-/// The visibility buffer of a `width`×`height` image, row-major from the top.
-#[derive(Debug, Clone)]
-pub struct VisibilityBuffer {
-    pub width: u32,
-    pub height: u32,
-    pub fragments: Vec<Fragment>,
-}
-
 /// A triangle ready for scan conversion: snapped, counter-clockwise in fixed point.
 #[derive(Debug, Clone, Copy)]
 struct ScreenTriangle {
@@ -85,6 +78,8 @@ struct ScreenTriangle {
     inv_w: [f32; 3],
     /// Original-triangle barycentrics (b1, b2) at each vertex, premultiplied by 1/w.
     bary_w: [Vec2; 3],
+    /// 1 / (twice the area in square fixed-point units), > 0.
+    inv_area: f32,
     object: u32,
     triangle: u32,
     /// Inclusive pixel bounds, inside the image.
@@ -92,6 +87,28 @@ struct ScreenTriangle {
     max_x: i32,
     min_y: i32,
     max_y: i32,
+}
+
+impl ScreenTriangle {
+    /// The fragment at the centre of pixel (x, y), where the surface's 1/w is `inv_w`.
+    #[inline]
+    fn fragment(&self, x: i32, y: i32, inv_w: f32) -> Fragment {
+        let half = 1 << (SUBPIXEL_BITS - 1);
+        let (px, py) = ((x << SUBPIXEL_BITS) + half, (y << SUBPIXEL_BITS) + half);
+        let (tx, ty) = (&self.x, &self.y);
+        // Screen-space weights of the vertices, then perspective-correct original barycentrics.
+        let l1 = edge(tx[2], ty[2], tx[0], ty[0], px, py) as f32 * self.inv_area;
+        let l2 = edge(tx[0], ty[0], tx[1], ty[1], px, py) as f32 * self.inv_area;
+        let l0 = 1.0 - l1 - l2;
+        let b = (self.bary_w[0] * l0 + self.bary_w[1] * l1 + self.bary_w[2] * l2) / inv_w;
+        Fragment {
+            inv_w,
+            object: self.object,
+            triangle: self.triangle,
+            b1: b.x,
+            b2: b.y,
+        }
+    }
 }
 
 /// A clip-space vertex during clipping: position (x, y, w) and barycentrics on the original triangle.
@@ -110,57 +127,71 @@ impl ClipVertex {
     }
 }
 
-/// Rasterizes `world` seen through `view` into a visibility buffer.
-pub fn rasterize(
+/// Draws `world` seen through `view`: rasterizes each band into a visibility buffer (the nearest
+/// triangle per pixel centre), then calls `shade` once per covered pixel with the fragment there.
+/// Uncovered pixels get the background. Shading right after each band keeps the band's buffer in
+/// cache, and each pixel is shaded once however much overdraw the scene has.
+pub fn draw(
     world: &World,
     view: &View,
     progress: &Progress,
-) -> Result<VisibilityBuffer, Cancelled> {
+    shade: impl Fn(&Fragment) -> Vec3 + Sync,
+) -> Result<Frame, Cancelled> {
     let (width, height) = (view.width, view.height);
     let triangles = setup(world, view);
     let bins = bin(&triangles, height);
-    let mut fragments = vec![Fragment::EMPTY; width as usize * height as usize];
+    let mut pixels = vec![world.background; width as usize * height as usize];
     progress.start(bins.len() as u64);
-    fragments
+    pixels
         .par_chunks_mut((BAND_ROWS * width) as usize)
         .zip(bins.par_iter())
         .enumerate()
-        .try_for_each(|(band, (rows, bin))| {
+        .try_for_each_init(Vec::new, |samples: &mut Vec<u64>, (band, (rows, bin))| {
             progress.check()?;
             let top = band as u32 * BAND_ROWS;
+            let band_rows = rows.len() as u32 / width;
+            // Each sample packs the nearest surface's 1/w (f32 bits, high half) with the number + 1
+            // of the screen triangle that drew it (low half); 0 is empty. Positive floats order like
+            // their bits, so one integer max is the depth test, and an exact depth tie goes to the
+            // later triangle whatever order the threads ran in.
+            samples.clear();
+            samples.resize(rows.len(), 0);
             scan_band(
                 &triangles,
                 bin,
                 width,
                 top,
-                rows.len() as u32 / width,
-                |index, tri, lambda| {
+                band_rows,
+                |index, i, tri, lambda| {
                     let inv_w = lambda[0] * tri.inv_w[0]
                         + lambda[1] * tri.inv_w[1]
                         + lambda[2] * tri.inv_w[2];
-                    let slot = &mut rows[index];
-                    if inv_w > slot.inv_w {
-                        let b = (tri.bary_w[0] * lambda[0]
-                            + tri.bary_w[1] * lambda[1]
-                            + tri.bary_w[2] * lambda[2])
-                            / inv_w;
-                        *slot = Fragment {
-                            inv_w,
-                            object: tri.object,
-                            triangle: tri.triangle,
-                            b1: b.x,
-                            b2: b.y,
-                        };
-                    }
+                    let sample = ((inv_w.to_bits() as u64) << 32) | (i as u64 + 1);
+                    samples[index] = samples[index].max(sample);
                 },
             );
+            for (r, (row, row_samples)) in rows
+                .chunks_mut(width as usize)
+                .zip(samples.chunks(width as usize))
+                .enumerate()
+            {
+                for (x, (pixel, &sample)) in row.iter_mut().zip(row_samples).enumerate() {
+                    let id = (sample & 0xffff_ffff) as usize;
+                    if id != 0 {
+                        let inv_w = f32::from_bits((sample >> 32) as u32);
+                        let fragment =
+                            triangles[id - 1].fragment(x as i32, (top + r as u32) as i32, inv_w);
+                        *pixel = shade(&fragment);
+                    }
+                }
+            }
             progress.advance(1);
             Ok(())
         })?;
-    Ok(VisibilityBuffer {
+    Ok(Frame {
         width,
         height,
-        fragments,
+        pixels,
     })
 }
 
@@ -184,7 +215,7 @@ pub fn coverage_counts(world: &World, view: &View) -> Vec<u32> {
                 width,
                 top,
                 rows.len() as u32 / width,
-                |index, _, _| rows[index] += 1,
+                |index, _, _, _| rows[index] += 1,
             );
         });
     counts
@@ -340,6 +371,7 @@ fn emit(
         y,
         inv_w,
         bary_w,
+        inv_area: 1.0 / area.abs() as f32,
         object,
         triangle,
         min_x,
@@ -367,7 +399,8 @@ fn bin(triangles: &[ScreenTriangle], height: u32) -> Vec<Vec<u32>> {
     bins
 }
 
-/// Scan-converts the band's triangles in order, calling `fragment(index in band, triangle, λ)`
+/// Scan-converts the band's triangles in order, calling `fragment(index in band, triangle
+/// number, triangle, λ)`
 /// for every covered pixel centre; λ are the screen-space barycentric weights of the vertices.
 #[inline]
 fn scan_band(
@@ -376,7 +409,7 @@ fn scan_band(
     width: u32,
     top: u32,
     rows: u32,
-    mut fragment: impl FnMut(usize, &ScreenTriangle, [f32; 3]),
+    mut fragment: impl FnMut(usize, u32, &ScreenTriangle, [f32; 3]),
 ) {
     let bottom = (top + rows) as i32 - 1;
     let half = 1 << (SUBPIXEL_BITS - 1);
@@ -406,20 +439,40 @@ fn scan_band(
             step_x[k] = -(dy as i64) << SUBPIXEL_BITS;
             step_y[k] = (dx as i64) << SUBPIXEL_BITS;
         }
-        let inv_area = 1.0 / edge(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]) as f32;
+        let inv_area = t.inv_area;
+        let columns = (t.max_x - t.min_x) as i64;
         for y in y0..=y1 {
-            let mut e = row_start;
-            let row = (y as u32 - top) as usize * width as usize;
-            for x in t.min_x..=t.max_x {
-                // Negative barycentric ⇒ pixel centre outside.
-                if (e[0] | e[1] | e[2]) >= 0 {
-                    let lambda = [
-                        (e[0] - bias[0]) as f32 * inv_area,
-                        (e[1] - bias[1]) as f32 * inv_area,
-                        (e[2] - bias[2]) as f32 * inv_area,
-                    ];
-                    fragment(row + x as usize, t, lambda);
+            // The covered span of this row, solved from the three edge functions (each is
+            // linear in x), so the loop below visits covered pixel centres only.
+            let (mut lo, mut hi) = (0i64, columns);
+            for k in 0..3 {
+                let (e, s) = (row_start[k], step_x[k]);
+                if s > 0 {
+                    if e < 0 {
+                        lo = lo.max((-e + s - 1) / s);
+                    }
+                } else if s < 0 {
+                    hi = if e < 0 { -1 } else { hi.min(e / -s) };
+                } else if e < 0 {
+                    hi = -1;
                 }
+            }
+            let row = (y as u32 - top) as usize * width as usize + t.min_x as usize;
+            let mut e = [0i64; 3];
+            for k in 0..3 {
+                e[k] = row_start[k] + lo * step_x[k] - bias[k];
+            }
+            for n in lo..=hi {
+                debug_assert!(
+                    e.iter().zip(bias).all(|(&e, b)| e + b >= 0),
+                    "span solved wrongly"
+                );
+                let lambda = [
+                    e[0] as f32 * inv_area,
+                    e[1] as f32 * inv_area,
+                    e[2] as f32 * inv_area,
+                ];
+                fragment(row + n as usize, i, t, lambda);
                 e[0] += step_x[0];
                 e[1] += step_x[1];
                 e[2] += step_x[2];

@@ -1,6 +1,6 @@
 //! The one lighting function every renderer calls: the Phong model summed over point lights.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 use crate::scene::{Falloff, Light, Material};
 
@@ -29,19 +29,24 @@ impl Lighting<'_> {
         m: &Material,
         mut lit: impl FnMut(usize, &Light) -> bool,
     ) -> Vec3 {
+        // SIMD vectors inside: this runs once per pixel for Phong and once per ray hit.
+        let (p, v) = (Vec3A::from(p), Vec3A::from(v));
+        let n = Vec3A::from(n);
         let n = if n.dot(v) < 0.0 { -n } else { n };
-        let mut c = m.color * self.ambient;
+        let color = Vec3A::from(m.color);
+        let mut c = color * self.ambient;
         for (i, light) in self.lights.iter().enumerate() {
-            let to_light = light.position - p;
-            let d = to_light.length();
-            if d <= 0.0 {
+            let to_light = Vec3A::from(light.position) - p;
+            let d2 = to_light.length_squared();
+            if d2 <= 0.0 {
                 continue;
             }
-            let l = to_light / d;
-            let n_dot_l = n.dot(l);
+            let inv_d = d2.sqrt().recip();
+            let n_dot_l = n.dot(to_light) * inv_d;
             if n_dot_l <= 0.0 || !lit(i, light) {
                 continue;
             }
+            let l = to_light * inv_d;
             let r = 2.0 * n_dot_l * n - l; // reflect(−L, N)
             let r_dot_v = r.dot(v);
             let specular = if r_dot_v > 0.0 && m.specular > 0.0 {
@@ -49,9 +54,14 @@ impl Lighting<'_> {
             } else {
                 0.0
             };
-            let strength = light.intensity * self.falloff.attenuation(d);
-            c += strength * light.color * (m.diffuse * n_dot_l * m.color + Vec3::splat(specular));
+            let mut strength = light.intensity;
+            if self.falloff != Falloff::default() {
+                strength *= self.falloff.attenuation(d2.sqrt());
+            }
+            c += strength
+                * Vec3A::from(light.color)
+                * (m.diffuse * n_dot_l * color + Vec3A::splat(specular));
         }
-        c
+        c.into()
     }
 }

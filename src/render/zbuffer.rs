@@ -1,10 +1,9 @@
-//! The shading pass over a visibility buffer, shared by the two Z-buffer algorithms.
+//! What the two Z-buffer algorithms share besides the rasterizer: the lighting and interpolation
+//! of per-vertex attributes.
 
 use glam::Vec3;
-use rayon::prelude::*;
 
-use super::frame::Frame;
-use super::raster::{Fragment, VisibilityBuffer};
+use super::raster::Fragment;
 use super::shading::Lighting;
 use crate::world::World;
 
@@ -14,31 +13,6 @@ pub fn lighting(world: &World) -> Lighting<'_> {
         lights: &world.lights,
         ambient: world.ambient,
         falloff: world.falloff,
-    }
-}
-
-/// Colours every pixel of `visible`: `shade` for covered pixels, the background elsewhere.
-pub fn resolve(
-    world: &World,
-    visible: &VisibilityBuffer,
-    shade: impl Fn(&Fragment) -> Vec3 + Sync,
-) -> Frame {
-    let pixels = visible
-        .fragments
-        .par_iter()
-        .with_min_len(4096)
-        .map(|f| {
-            if f.is_covered() {
-                shade(f)
-            } else {
-                world.background
-            }
-        })
-        .collect();
-    Frame {
-        width: visible.width,
-        height: visible.height,
-        pixels,
     }
 }
 

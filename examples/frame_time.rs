@@ -1,0 +1,52 @@
+//! Times repeated renders of one scene: `cargo run --release --example frame_time -- SCENE WxH [ALGO] [REPS]`.
+//! Prints the minimum and median wall time per frame; a quick check while working on a hot path.
+
+use std::path::Path;
+use std::time::Instant;
+
+use rastray::render::{Algorithm, Progress, RenderOptions, Size};
+use rastray::{World, render};
+
+fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let scene_path = args
+        .first()
+        .map(String::as_str)
+        .unwrap_or("scenes/default.toml");
+    let size: Size = args
+        .get(1)
+        .map(String::as_str)
+        .unwrap_or("1920x1080")
+        .parse()?;
+    let algorithms: Vec<Algorithm> = match args.get(2).map(String::as_str) {
+        Some("gouraud") => vec![Algorithm::Gouraud],
+        Some("phong") => vec![Algorithm::Phong],
+        Some("ray") => vec![Algorithm::Ray],
+        _ => Algorithm::ALL.to_vec(),
+    };
+    let reps: usize = args.get(3).map(|s| s.parse()).transpose()?.unwrap_or(20);
+    let path = Path::new(scene_path);
+    let scene = rastray::scene::load(path)?;
+    let world = World::build(&scene, path.parent().unwrap_or(Path::new(".")))?;
+    println!(
+        "{scene_path}: {} triangles at {size}",
+        world.triangle_count()
+    );
+    for algorithm in algorithms {
+        let options = RenderOptions::new(algorithm, size.width, size.height);
+        let mut times: Vec<f64> = (0..reps)
+            .map(|_| {
+                let start = Instant::now();
+                render(&world, &scene.camera, &options, &Progress::new()).expect("render");
+                start.elapsed().as_secs_f64() * 1000.0
+            })
+            .collect();
+        times.sort_by(f64::total_cmp);
+        println!(
+            "{algorithm:>8}: min {:.2} ms, median {:.2} ms",
+            times[0],
+            times[times.len() / 2]
+        );
+    }
+    Ok(())
+}
