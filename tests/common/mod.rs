@@ -1,0 +1,29 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use std::path::Path;
+
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, render};
+use rastray::{Scene, World};
+
+/// Parses a scene from TOML text (panics with the error: the tests' scenes are valid).
+pub fn scene(toml: &str) -> Scene {
+    rastray::scene::from_toml_str(toml, Path::new("test.toml")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Builds the world of `scene` with OBJ paths relative to the crate root.
+pub fn world(scene: &Scene) -> World {
+    World::build(scene, Path::new(env!("CARGO_MANIFEST_DIR"))).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Renders `scene` with `algorithm` at `width`×`height`, one sample per pixel.
+pub fn draw(scene: &Scene, algorithm: Algorithm, width: u32, height: u32) -> Frame {
+    let options = RenderOptions::new(algorithm, width, height);
+    render(&world(scene), &scene.camera, &options, &Progress::new()).expect("render")
+}
+
+/// The default scene file shipped in scenes/.
+pub fn default_scene() -> Scene {
+    rastray::scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/default.toml"))
+        .expect("default.toml")
+}

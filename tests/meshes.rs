@@ -1,0 +1,185 @@
+//! Face-list meshes: face counts, exact radii, outward winding, normals, OBJ import.
+
+mod common;
+
+use std::path::Path;
+
+use glam::Vec3;
+use rastray::mesh::{cuboid, icosahedron, load_obj, prism, tessellate, with_normals};
+use rastray::scene::{Object, Shape};
+
+fn outward(positions: &[Vec3], triangles: &[[u32; 3]]) -> bool {
+    triangles.iter().all(|&[a, b, c]| {
+        let (a, b, c) = (
+            positions[a as usize],
+            positions[b as usize],
+            positions[c as usize],
+        );
+        (b - a).cross(c - a).dot((a + b + c) / 3.0) > 0.0
+    })
+}
+
+#[test]
+fn icosahedron_has_20_times_4_to_the_k_faces_on_its_sphere() {
+    for k in 0..=4 {
+        let f = icosahedron(2.5, k);
+        assert_eq!(f.triangles.len(), 20 * 4usize.pow(k));
+        for p in &f.positions {
+            assert!(
+                (p.length() - 2.5).abs() < 1e-5,
+                "vertex {p} is off the sphere"
+            );
+        }
+        assert!(
+            outward(&f.positions, &f.triangles),
+            "k = {k}: a face winds inward"
+        );
+    }
+    // Euler's formula for the closed, welded subdivision: V − E + F = 2 with E = 3F/2.
+    let f = icosahedron(1.0, 3);
+    assert_eq!(
+        f.positions.len() as i64 - (f.triangles.len() as i64 * 3 / 2) + f.triangles.len() as i64,
+        2
+    );
+}
+
+#[test]
+fn boxes_and_prisms_have_12_and_8_faces_times_segments_squared() {
+    for s in [1, 2, 5] {
+        let b = cuboid(Vec3::new(2.0, 3.0, 4.0), s);
+        assert_eq!(b.triangles.len() as u32, 12 * s * s);
+        assert!(outward(&b.positions, &b.triangles));
+        let p = prism(Vec3::new(2.0, 3.0, 4.0), s);
+        assert_eq!(p.triangles.len() as u32, 8 * s * s);
+        assert!(outward(&p.positions, &p.triangles));
+        // Segments add faces, not area.
+        let area = |f: &rastray::mesh::FaceList| {
+            with_normals(&f.positions, &f.triangles, false).surface_area()
+        };
+        assert!((area(&b) - 2.0 * (2.0 * 3.0 + 3.0 * 4.0 + 2.0 * 4.0)).abs() < 1e-3);
+        let slope = (1.0f32 + 9.0).sqrt(); // from (±1, −1.5) to (0, 1.5)
+        let prism_area = 2.0 * (0.5 * 2.0 * 3.0) + 4.0 * (2.0 + 2.0 * slope);
+        assert!(
+            (area(&p) - prism_area).abs() < 1e-3,
+            "prism area {}",
+            area(&p)
+        );
+    }
+}
+
+#[test]
+fn flat_normals_are_face_normals_and_smooth_ones_follow_the_sphere() {
+    let f = icosahedron(1.0, 3);
+    let flat = with_normals(&f.positions, &f.triangles, false);
+    assert_eq!(
+        flat.positions.len(),
+        flat.triangles.len() * 3,
+        "flat shading splits vertices per face"
+    );
+    for t in &flat.triangles {
+        let [a, b, c] = t.map(|i| flat.positions[i as usize]);
+        let n = (b - a).cross(c - a).normalize();
+        assert!(flat.normals[t[0] as usize].distance(n) < 1e-5);
+    }
+    let smooth = with_normals(&f.positions, &f.triangles, true);
+    assert_eq!(
+        smooth.positions.len(),
+        f.positions.len(),
+        "smooth shading keeps vertices welded"
+    );
+    for (p, n) in smooth.positions.iter().zip(&smooth.normals) {
+        assert!(
+            n.dot(p.normalize()) > 0.995,
+            "smooth normal {n} strays from the radius at {p}"
+        );
+    }
+    // A box's 90° edges exceed the crease angle: smooth shading keeps its faces flat.
+    let b = cuboid(Vec3::ONE, 1);
+    let smooth_box = with_normals(&b.positions, &b.triangles, true);
+    for n in &smooth_box.normals {
+        assert!(
+            (n.abs().max_element() - 1.0).abs() < 1e-6,
+            "box normal {n} was smoothed across an edge"
+        );
+    }
+}
+
+#[test]
+fn rotation_turns_the_object_about_its_centre() {
+    let mut object = Object::new(Shape::Box {
+        center: Vec3::new(5.0, 0.0, 0.0),
+        size: Vec3::new(2.0, 1.0, 1.0),
+        segments: 1,
+    });
+    object.rotation = Vec3::new(0.0, 90.0, 0.0);
+    let mesh = tessellate(&object, None);
+    let (lo, hi) = mesh.bounds().expect("bounds");
+    // The 2-unit width now lies along Z; the centre stays put.
+    assert!(
+        (hi - lo - Vec3::new(1.0, 1.0, 2.0)).abs().max_element() < 1e-5,
+        "{lo} {hi}"
+    );
+    assert!(
+        ((lo + hi) / 2.0 - Vec3::new(5.0, 0.0, 0.0))
+            .abs()
+            .max_element()
+            < 1e-5
+    );
+}
+
+#[test]
+fn obj_polygons_are_triangulated_and_missing_normals_computed() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/suzanne.obj");
+    let model = load_obj(&path).expect("suzanne loads");
+    // 500 faces of which 468 are quads: 32 + 2·468 = 968 triangles.
+    assert_eq!(model.triangles.len(), 968);
+    assert!(model.corner_normals.is_some(), "suzanne carries normals");
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let quad = dir.path().join("quad.obj");
+    std::fs::write(&quad, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").expect("write");
+    let model = load_obj(&quad).expect("quad loads");
+    assert_eq!(model.triangles.len(), 2);
+    assert!(model.corner_normals.is_none());
+    let object = Object::new(Shape::Mesh {
+        path: quad.clone(),
+        position: Vec3::ZERO,
+        scale: 1.0,
+    });
+    let mesh = tessellate(&object, Some(&model));
+    for n in &mesh.normals {
+        assert!(n.distance(Vec3::Z) < 1e-6, "computed normal {n}");
+    }
+}
+
+#[test]
+fn an_open_mesh_is_lit_from_both_sides() {
+    // The same quad, once facing the camera and once facing away: with the light at the eye
+    // both sides must show the same lit colour (the normal flips toward the viewer).
+    let scene_for = |yaw: f32| {
+        common::scene(&format!(
+            r#"
+background = [0.0, 0.0, 0.0]
+[camera]
+position = [0.0, 0.0, 4.0]
+[[light]]
+position = [0.0, 0.0, 4.0]
+[[object]]
+type = "mesh"
+path = "tests/data/quad_open.obj"
+rotation = [0.0, {yaw}, 0.0]
+smooth = false
+"#
+        ))
+    };
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    assert!(dir.join("quad_open.obj").exists());
+    let front = common::draw(&scene_for(0.0), rastray::Algorithm::Phong, 33, 33);
+    let back = common::draw(&scene_for(180.0), rastray::Algorithm::Phong, 33, 33);
+    let (f, b) = (front.pixel(16, 16), back.pixel(16, 16));
+    assert!(f.max_element() > 0.5, "the front is lit: {f}");
+    assert!(
+        (f - b).abs().max_element() < 1e-4,
+        "front {f} and back {b} differ"
+    );
+}
