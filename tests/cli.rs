@@ -67,7 +67,7 @@ fn info_lists_objects_triangles_and_bounds() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let text = String::from_utf8_lossy(&o.stdout);
-    for needle in ["floor", "icosahedron", "prism", "triangles 112", "bounds"] {
+    for needle in ["floor", "icosahedron", "prism", "triangles 352", "bounds"] {
         assert!(text.contains(needle), "missing {needle}: {text}");
     }
 }

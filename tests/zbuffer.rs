@@ -139,7 +139,7 @@ fn a_finely_tessellated_face_covers_every_pixel_exactly_once() {
         let corners: Vec<glam::Vec2> = [(-1.5, -1.5), (1.5, -1.5), (1.5, 1.5), (-1.5, 1.5)]
             .iter()
             .map(|&(x, y)| {
-                let p = Quat::from_rotation_z((angle as f32).to_radians()) * Vec3::new(x, y, 0.0);
+                let p = Quat::from_rotation_z(angle.to_radians()) * Vec3::new(x, y, 0.0);
                 view.clip_to_pixel(view.to_clip(p))
             })
             .collect();
