@@ -11,6 +11,9 @@ use rayon::prelude::*;
 use crate::mesh::{Mesh, ObjModel, Sphere, load_obj, tessellate};
 use crate::scene::{Falloff, Light, Material, Scene, SceneError, Shape};
 
+/// Most triangles a world may hold (about 2 GB of vertex data).
+pub const MAX_TRIANGLES: u64 = 20_000_000;
+
 /// One tessellated object.
 #[derive(Debug, Clone)]
 pub struct WorldObject {
@@ -87,6 +90,24 @@ impl World {
                     Some(model)
                 }
                 _ => None,
+            });
+        }
+        let triangles: u64 = scene
+            .objects
+            .iter()
+            .zip(&models)
+            .map(|(object, model)| match (&object.shape, model) {
+                (Shape::Icosahedron { subdivisions, .. }, _) => 20 * 4u64.pow(*subdivisions),
+                (Shape::Box { segments, .. }, _) => 12 * (*segments as u64).pow(2),
+                (Shape::Prism { segments, .. }, _) => 8 * (*segments as u64).pow(2),
+                (Shape::Mesh { .. }, Some(model)) => model.triangles.len() as u64,
+                (Shape::Mesh { .. }, None) => 0,
+            })
+            .sum();
+        if triangles > MAX_TRIANGLES {
+            return Err(SceneError::TooManyTriangles {
+                triangles,
+                limit: MAX_TRIANGLES,
             });
         }
         let objects = scene

@@ -28,6 +28,9 @@ pub enum SceneError {
         field: String,
         message: String,
     },
+    /// The scene would tessellate into more triangles than the renderers accept.
+    #[error("the scene has {triangles} triangles; the limit is {limit}")]
+    TooManyTriangles { triangles: u64, limit: u64 },
     /// An OBJ model referenced by the scene could not be loaded.
     #[error("{obj}: cannot load the OBJ model of object[{index}]: {message}")]
     Obj {
