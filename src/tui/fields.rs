@@ -403,6 +403,6 @@ pub fn typed(scene: &Scene, item: Item, key: Key, text: &str) -> Result<Scene, R
 fn checked(scene: &Scene, item: Item, part: Part) -> Result<Scene, Refusal> {
     let mut new = scene.clone();
     part.store(&mut new, item);
-    validate(&new).map_err(|e| format!("{} {}", e.path, e.message))?;
+    validate(&new).map_err(|e| e.message)?;
     Ok(new)
 }

@@ -175,7 +175,10 @@ fn step_field(app: &mut App, times: i32) {
             commit(app, new);
             app.camera_streak = false;
         }
-        Err(message) => app.error(message),
+        Err(message) => {
+            let label = Part::of(&app.scene, app.item()).map(|p| key.label(&p));
+            app.error(format!("{}: {message}", label.unwrap_or_default()));
+        }
     }
 }
 
