@@ -10,6 +10,7 @@ pub mod export;
 pub mod mesh;
 pub mod render;
 pub mod scene;
+pub mod tui;
 pub mod world;
 
 pub use render::{Algorithm, Frame, RenderOptions, render};

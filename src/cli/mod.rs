@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use clap::{Parser, Subcommand};
 use rastray::Scene;
-use rastray::render::{Algorithm, Size};
+use rastray::render::Size;
+use rastray::tui::ColorMode;
 
 /// Build small 3D scenes in the terminal and render them with a Z-buffer (Gouraud or Phong) or a
 /// Whitted ray tracer.
@@ -20,6 +21,9 @@ pub struct Cli {
     pub command: Option<Command>,
     /// Scene file to open (the built-in default scene when absent).
     pub scene: Option<PathBuf>,
+    /// Colours of the terminal preview (default: truecolor when COLORTERM says so, else 256).
+    #[arg(long, value_enum)]
+    pub color: Option<ColorMode>,
 }
 
 #[derive(Debug, Subcommand)]
@@ -38,22 +42,8 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Info { scene }) => info::run(&scene),
-        None => open_default(cli.scene.as_deref()),
+        None => rastray::tui::run(cli.scene, cli.color.unwrap_or_else(ColorMode::detect)),
     }
-}
-
-/// Without a subcommand: renders the scene (or the default one) to `rastray.png` and says where.
-fn open_default(scene: Option<&Path>) -> anyhow::Result<()> {
-    let args = render::RenderArgs {
-        scene: scene.map(Path::to_path_buf),
-        algorithm: Algorithm::Phong,
-        size: "1280x720".parse().expect("a valid size"),
-        samples: 2,
-        max_depth: None,
-        no_shadows: false,
-        output: PathBuf::from("rastray.png"),
-    };
-    render::run(&args)
 }
 
 /// Loads the scene at `path`, or the built-in default scene; returns it with the directory its

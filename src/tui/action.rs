@@ -1,0 +1,93 @@
+//! Everything the user (or a finished background job) can ask of the editor. Keys become
+//! Actions in [`super::input`]; [`super::update::apply`] carries them out.
+
+use super::app::AddKind;
+use super::worker::RenderReply;
+use crate::render::Algorithm;
+
+/// One request to change the editor's state.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Action {
+    /// Quit, asking first when there are unsaved edits.
+    Quit,
+    /// Quit without saving (answer to the question).
+    QuitNow,
+    /// Save, then quit (answer to the question).
+    SaveAndQuit,
+    /// Focus the next pane.
+    FocusNext,
+    /// Focus the previous pane.
+    FocusPrev,
+    /// Move up in the focused list, menu or form.
+    Up,
+    /// Move down in the focused list, menu or form.
+    Down,
+    /// Step the chosen property by this many steps (±1, ±10).
+    Step(i32),
+    /// Start typing an exact value for the chosen property.
+    Edit,
+    /// A typed character.
+    Input(char),
+    /// Delete the last typed character.
+    Backspace,
+    /// Clear the typed line.
+    ClearInput,
+    /// Accept: the typed value, the highlighted menu entry, the dialog.
+    Submit,
+    /// Close the dialog, menu or overlay; cancel the export in progress.
+    Cancel,
+    /// Show the key overlay.
+    Help,
+    /// Open the add menu.
+    AddMenu,
+    /// Add an item of this kind.
+    Add(AddKind),
+    /// Duplicate the selected object or light.
+    Duplicate,
+    /// Remove the selected object or light.
+    Remove,
+    Undo,
+    Redo,
+    /// Save to the scene's file, or ask for a path.
+    Save,
+    /// Ask for a path and save there.
+    SaveAs,
+    /// Ask for a scene file to open.
+    Open,
+    /// Open the export dialog.
+    Export,
+    /// Switch the preview's algorithm.
+    Algorithm(Algorithm),
+    /// Toggle the side-by-side view of the three algorithms.
+    ToggleCompare,
+    /// Turn the camera around its target, degrees (yaw about +Y, pitch up).
+    Orbit {
+        yaw: f32,
+        pitch: f32,
+    },
+    /// Move camera and target sideways, as fractions of the viewing distance.
+    Pan {
+        right: f32,
+        up: f32,
+    },
+    /// Scale the viewing distance (< 1 moves closer).
+    Zoom(f32),
+    /// Put the camera back where the scene had it.
+    ResetView,
+    /// A mouse button went down at (column, row).
+    DragStart {
+        column: u16,
+        row: u16,
+    },
+    /// The mouse moved with the button down.
+    DragTo {
+        column: u16,
+        row: u16,
+    },
+    /// The mouse button came up.
+    DragEnd,
+    /// A preview frame (or a failure) from the render worker.
+    Rendered(Box<RenderReply>),
+    /// Periodic check of background jobs.
+    Tick,
+}

@@ -1,0 +1,408 @@
+//! The editable properties of the selected item: their labels, current values, steps, and how
+//! typed text becomes a value. Every change is checked with [`crate::scene::validate`] on a copy
+//! of the scene, so a refused value changes nothing.
+
+use std::path::PathBuf;
+
+use glam::Vec3;
+
+use super::app::Item;
+use super::text::clean;
+use crate::scene::{Camera, Light, Object, Scene, Shape, validate};
+
+/// One component of a vector field.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Axis {
+    X,
+    Y,
+    Z,
+}
+
+impl Axis {
+    const ALL: [Axis; 3] = [Axis::X, Axis::Y, Axis::Z];
+
+    fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// A property of an object, a light or the scene settings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Key {
+    Name,
+    Center(Axis),
+    Radius,
+    Subdivisions,
+    Size(Axis),
+    Segments,
+    Path,
+    Scale,
+    Rotation(Axis),
+    Color(Axis),
+    Diffuse,
+    Specular,
+    Shininess,
+    Reflection,
+    Smooth,
+    Position(Axis),
+    Intensity,
+    CameraPosition(Axis),
+    CameraTarget(Axis),
+    Fov,
+    Ambient,
+    Background(Axis),
+    MaxDepth,
+}
+
+/// The current value of a property.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Value {
+    Number(f32),
+    Count(u32),
+    Flag(bool),
+    Text(String),
+}
+
+impl std::fmt::Display for Value {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Value::Number(x) => f.write_str(&format_number(*x)),
+            Value::Count(n) => write!(f, "{n}"),
+            Value::Flag(b) => f.write_str(if *b { "yes" } else { "no" }),
+            Value::Text(s) => f.write_str(&clean(s)),
+        }
+    }
+}
+
+/// A number with at most four decimals and no trailing zeros: 1, 0.85, -2.2.
+pub fn format_number(x: f32) -> String {
+    let s = format!("{x:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.into() }
+}
+
+/// How far Left/Right moves a number, and the range stepping keeps to.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Step {
+    pub amount: f32,
+    pub min: f32,
+    pub max: f32,
+}
+
+const fn step(amount: f32, min: f32, max: f32) -> Step {
+    Step { amount, min, max }
+}
+
+const FREE: f32 = 1.0e6;
+
+impl Key {
+    /// The label shown in the properties panel, such as `center.x` or `color.r`.
+    pub fn label(self, item: &Part) -> String {
+        let xyz = |base: &str, a: Axis| format!("{base}.{}", ["x", "y", "z"][a.index()]);
+        let rgb = |base: &str, a: Axis| format!("{base}.{}", ["r", "g", "b"][a.index()]);
+        match self {
+            Key::Name => "name".into(),
+            Key::Center(a) => match item {
+                Part::Object(o) if matches!(o.shape, Shape::Mesh { .. }) => xyz("position", a),
+                _ => xyz("center", a),
+            },
+            Key::Radius => "radius".into(),
+            Key::Subdivisions => "subdivisions".into(),
+            Key::Size(a) => format!("size.{}", ["w", "h", "d"][a.index()]),
+            Key::Segments => "segments".into(),
+            Key::Path => "path".into(),
+            Key::Scale => "scale".into(),
+            Key::Rotation(a) => xyz("rotation", a),
+            Key::Color(a) => rgb("color", a),
+            Key::Diffuse => "diffuse".into(),
+            Key::Specular => "specular".into(),
+            Key::Shininess => "shininess".into(),
+            Key::Reflection => "reflection".into(),
+            Key::Smooth => "smooth".into(),
+            Key::Position(a) => xyz("position", a),
+            Key::Intensity => "intensity".into(),
+            Key::CameraPosition(a) => xyz("camera.pos", a),
+            Key::CameraTarget(a) => xyz("camera.target", a),
+            Key::Fov => "camera.fov".into(),
+            Key::Ambient => "ambient".into(),
+            Key::Background(a) => rgb("background", a),
+            Key::MaxDepth => "max depth".into(),
+        }
+    }
+
+    /// The step and range of a numeric property; counts step by whole units.
+    pub fn step(self) -> Step {
+        match self {
+            Key::Center(_) | Key::Position(_) | Key::CameraPosition(_) | Key::CameraTarget(_) => {
+                step(0.1, -FREE, FREE)
+            }
+            Key::Radius | Key::Size(_) | Key::Scale => step(0.1, 0.01, FREE),
+            Key::Rotation(_) => step(5.0, -FREE, FREE),
+            Key::Color(_) | Key::Background(_) | Key::Diffuse | Key::Specular | Key::Reflection => {
+                step(0.05, 0.0, 1.0)
+            }
+            Key::Shininess => step(1.0, 0.0, 10_000.0),
+            Key::Intensity => step(0.05, 0.0, FREE),
+            Key::Fov => step(1.0, 1.0, 179.0),
+            Key::Ambient => step(0.01, 0.0, 1.0),
+            Key::Subdivisions | Key::MaxDepth => step(1.0, 0.0, FREE),
+            Key::Segments => step(1.0, 1.0, FREE),
+            Key::Name | Key::Path | Key::Smooth => step(0.0, 0.0, 0.0),
+        }
+    }
+}
+
+/// An owned copy of the selected item, edited and then stored back into a copy of the scene.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Part {
+    Settings(Settings),
+    Light(Light),
+    Object(Object),
+}
+
+/// The scene-wide properties shown under "Camera & scene".
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    pub camera: Camera,
+    pub ambient: f32,
+    pub background: Vec3,
+    pub max_depth: u32,
+}
+
+/// A mutable reference to one property inside a [`Part`].
+enum Slot<'a> {
+    Number(&'a mut f32),
+    Count(&'a mut u32),
+    Flag(&'a mut bool),
+    Name(&'a mut Option<String>),
+    Path(&'a mut PathBuf),
+}
+
+fn component(v: &mut Vec3, a: Axis) -> &mut f32 {
+    match a {
+        Axis::X => &mut v.x,
+        Axis::Y => &mut v.y,
+        Axis::Z => &mut v.z,
+    }
+}
+
+impl Part {
+    /// A copy of `item` in `scene`, or `None` when the item no longer exists.
+    pub fn of(scene: &Scene, item: Item) -> Option<Part> {
+        Some(match item {
+            Item::Settings => Part::Settings(Settings {
+                camera: scene.camera,
+                ambient: scene.ambient,
+                background: scene.background,
+                max_depth: scene.max_depth,
+            }),
+            Item::Light(i) => Part::Light(scene.lights.get(i)?.clone()),
+            Item::Object(i) => Part::Object(scene.objects.get(i)?.clone()),
+        })
+    }
+
+    /// Writes this part back over `item` of `scene`.
+    fn store(self, scene: &mut Scene, item: Item) {
+        match (self, item) {
+            (Part::Settings(s), _) => {
+                scene.camera = s.camera;
+                scene.ambient = s.ambient;
+                scene.background = s.background;
+                scene.max_depth = s.max_depth;
+            }
+            (Part::Light(l), Item::Light(i)) => scene.lights[i] = l,
+            (Part::Object(o), Item::Object(i)) => scene.objects[i] = o,
+            _ => {}
+        }
+    }
+
+    /// Every property of this part, in display order.
+    pub fn keys(&self) -> Vec<Key> {
+        let xyz = |f: fn(Axis) -> Key| Axis::ALL.map(f);
+        let mut keys = Vec::new();
+        match self {
+            Part::Settings(_) => {
+                keys.extend(xyz(Key::CameraPosition));
+                keys.extend(xyz(Key::CameraTarget));
+                keys.extend([Key::Fov, Key::Ambient]);
+                keys.extend(xyz(Key::Background));
+                keys.push(Key::MaxDepth);
+            }
+            Part::Light(_) => {
+                keys.push(Key::Name);
+                keys.extend(xyz(Key::Position));
+                keys.push(Key::Intensity);
+                keys.extend(xyz(Key::Color));
+            }
+            Part::Object(o) => {
+                keys.push(Key::Name);
+                keys.extend(xyz(Key::Center));
+                match o.shape {
+                    Shape::Icosahedron { .. } => keys.extend([Key::Radius, Key::Subdivisions]),
+                    Shape::Box { .. } | Shape::Prism { .. } => {
+                        keys.extend(xyz(Key::Size));
+                        keys.push(Key::Segments);
+                    }
+                    Shape::Mesh { .. } => keys.extend([Key::Path, Key::Scale]),
+                }
+                keys.extend(xyz(Key::Rotation));
+                keys.extend(xyz(Key::Color));
+                keys.extend([
+                    Key::Diffuse,
+                    Key::Specular,
+                    Key::Shininess,
+                    Key::Reflection,
+                    Key::Smooth,
+                ]);
+            }
+        }
+        keys
+    }
+
+    fn slot(&mut self, key: Key) -> Option<Slot<'_>> {
+        Some(match self {
+            Part::Settings(s) => match key {
+                Key::CameraPosition(a) => Slot::Number(component(&mut s.camera.position, a)),
+                Key::CameraTarget(a) => Slot::Number(component(&mut s.camera.target, a)),
+                Key::Fov => Slot::Number(&mut s.camera.fov),
+                Key::Ambient => Slot::Number(&mut s.ambient),
+                Key::Background(a) => Slot::Number(component(&mut s.background, a)),
+                Key::MaxDepth => Slot::Count(&mut s.max_depth),
+                _ => return None,
+            },
+            Part::Light(l) => match key {
+                Key::Name => Slot::Name(&mut l.name),
+                Key::Position(a) => Slot::Number(component(&mut l.position, a)),
+                Key::Intensity => Slot::Number(&mut l.intensity),
+                Key::Color(a) => Slot::Number(component(&mut l.color, a)),
+                _ => return None,
+            },
+            Part::Object(o) => {
+                let m = &mut o.material;
+                match (key, &mut o.shape) {
+                    (Key::Name, _) => Slot::Name(&mut o.name),
+                    (Key::Center(a), Shape::Mesh { position: c, .. })
+                    | (Key::Center(a), Shape::Icosahedron { center: c, .. })
+                    | (Key::Center(a), Shape::Box { center: c, .. })
+                    | (Key::Center(a), Shape::Prism { center: c, .. }) => {
+                        Slot::Number(component(c, a))
+                    }
+                    (Key::Radius, Shape::Icosahedron { radius, .. }) => Slot::Number(radius),
+                    (Key::Subdivisions, Shape::Icosahedron { subdivisions, .. }) => {
+                        Slot::Count(subdivisions)
+                    }
+                    (Key::Size(a), Shape::Box { size, .. } | Shape::Prism { size, .. }) => {
+                        Slot::Number(component(size, a))
+                    }
+                    (
+                        Key::Segments,
+                        Shape::Box { segments, .. } | Shape::Prism { segments, .. },
+                    ) => Slot::Count(segments),
+                    (Key::Path, Shape::Mesh { path, .. }) => Slot::Path(path),
+                    (Key::Scale, Shape::Mesh { scale, .. }) => Slot::Number(scale),
+                    (Key::Rotation(a), _) => Slot::Number(component(&mut o.rotation, a)),
+                    (Key::Color(a), _) => Slot::Number(component(&mut m.color, a)),
+                    (Key::Diffuse, _) => Slot::Number(&mut m.diffuse),
+                    (Key::Specular, _) => Slot::Number(&mut m.specular),
+                    (Key::Shininess, _) => Slot::Number(&mut m.shininess),
+                    (Key::Reflection, _) => Slot::Number(&mut m.reflection),
+                    (Key::Smooth, _) => Slot::Flag(&mut o.smooth),
+                    _ => return None,
+                }
+            }
+        })
+    }
+
+    /// The current value of `key`, or `None` when this part has no such property.
+    pub fn value(&self, key: Key) -> Option<Value> {
+        Some(match self.clone().slot(key)? {
+            Slot::Number(x) => Value::Number(*x),
+            Slot::Count(n) => Value::Count(*n),
+            Slot::Flag(b) => Value::Flag(*b),
+            Slot::Name(n) => Value::Text(n.clone().unwrap_or_default()),
+            Slot::Path(p) => Value::Text(p.display().to_string()),
+        })
+    }
+}
+
+/// Why a change was refused: a message for the status line or the inline error.
+pub type Refusal = String;
+
+/// Rounds away float noise so that 0.8 + 4 × 0.05 is exactly 1.
+fn tidy(x: f32) -> f32 {
+    (x * 10_000.0).round() / 10_000.0
+}
+
+/// `scene` with `key` of `item` stepped `times` steps (negative: down); booleans toggle.
+pub fn stepped(scene: &Scene, item: Item, key: Key, times: i32) -> Result<Scene, Refusal> {
+    let mut part = Part::of(scene, item).ok_or("nothing selected")?;
+    let s = key.step();
+    match part.slot(key).ok_or("no such property")? {
+        Slot::Number(x) => {
+            let new = tidy((*x + s.amount * times as f32).clamp(s.min, s.max));
+            if new == *x {
+                return Err(format!(
+                    "{} is at its limit",
+                    key.label(&Part::of(scene, item).ok_or("")?)
+                ));
+            }
+            *x = new;
+        }
+        Slot::Count(n) => {
+            let new = (*n as i64 + times as i64).clamp(s.min as i64, u32::MAX as i64) as u32;
+            if new == *n {
+                return Err("already at its limit".into());
+            }
+            *n = new;
+        }
+        Slot::Flag(b) => *b = !*b,
+        Slot::Name(_) | Slot::Path(_) => return Err("press Enter to type a new value".into()),
+    }
+    checked(scene, item, part)
+}
+
+/// `scene` with `key` of `item` set from typed `text`.
+pub fn typed(scene: &Scene, item: Item, key: Key, text: &str) -> Result<Scene, Refusal> {
+    let mut part = Part::of(scene, item).ok_or("nothing selected")?;
+    let t = text.trim();
+    match part.slot(key).ok_or("no such property")? {
+        Slot::Number(x) => {
+            *x = t
+                .parse::<f32>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("`{t}` is not a number"))?;
+        }
+        Slot::Count(n) => {
+            *n = t
+                .parse::<u32>()
+                .map_err(|_| format!("`{t}` is not a whole number ≥ 0"))?;
+        }
+        Slot::Flag(b) => {
+            *b = match t.to_ascii_lowercase().as_str() {
+                "yes" | "y" | "true" | "on" | "1" => true,
+                "no" | "n" | "false" | "off" | "0" => false,
+                _ => return Err(format!("`{t}` is not yes or no")),
+            };
+        }
+        Slot::Name(n) => {
+            let name = clean(t);
+            *n = (!name.is_empty()).then_some(name);
+        }
+        Slot::Path(p) => {
+            if t.is_empty() {
+                return Err("type the path of an OBJ file".into());
+            }
+            *p = PathBuf::from(t);
+        }
+    }
+    checked(scene, item, part)
+}
+
+/// Stores `part` into a copy of `scene` and validates the result.
+fn checked(scene: &Scene, item: Item, part: Part) -> Result<Scene, Refusal> {
+    let mut new = scene.clone();
+    part.store(&mut new, item);
+    validate(&new).map_err(|e| e.message)?;
+    Ok(new)
+}

@@ -1,0 +1,138 @@
+//! Frames as terminal cells: each cell shows two stacked pixels with '▀', the upper pixel as the
+//! foreground colour and the lower as the background, in truecolor or the xterm 256-colour palette.
+
+use ratatui::style::Color;
+
+use crate::render::Frame;
+
+/// How colours reach the terminal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum ColorMode {
+    /// 24-bit RGB escape sequences.
+    #[default]
+    Truecolor,
+    /// The nearest entry of the xterm 256-colour palette.
+    #[value(name = "256")]
+    Ansi256,
+}
+
+impl ColorMode {
+    /// Truecolor when `COLORTERM` says the terminal has it, the 256-colour palette otherwise.
+    pub fn detect() -> ColorMode {
+        match std::env::var("COLORTERM") {
+            Ok(v) if v.eq_ignore_ascii_case("truecolor") || v.eq_ignore_ascii_case("24bit") => {
+                ColorMode::Truecolor
+            }
+            _ => ColorMode::Ansi256,
+        }
+    }
+
+    /// The terminal colour for an 8-bit sRGB triple.
+    pub fn color(self, [r, g, b]: [u8; 3]) -> Color {
+        match self {
+            ColorMode::Truecolor => Color::Rgb(r, g, b),
+            ColorMode::Ansi256 => Color::Indexed(nearest_256([r, g, b])),
+        }
+    }
+}
+
+/// A frame encoded once to 8-bit sRGB, ready to be drawn many times.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct PreviewImage {
+    /// Width in pixels (= cells).
+    pub width: u32,
+    /// Height in pixels (= 2 × rows).
+    pub height: u32,
+    /// Row-major sRGB pixels from the top-left.
+    pub pixels: Vec<[u8; 3]>,
+}
+
+impl PreviewImage {
+    /// Encodes `frame` to sRGB.
+    pub fn from_frame(frame: &Frame) -> PreviewImage {
+        let pixels = frame
+            .to_srgb8()
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
+            .collect();
+        PreviewImage {
+            width: frame.width,
+            height: frame.height,
+            pixels,
+        }
+    }
+
+    /// The pixel at (`x`, `y`), or `None` outside the image.
+    pub fn pixel(&self, x: u32, y: u32) -> Option<[u8; 3]> {
+        (x < self.width && y < self.height).then(|| self.pixels[(y * self.width + x) as usize])
+    }
+}
+
+/// What one terminal cell shows: a symbol with foreground and background colours.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct HalfBlock {
+    pub symbol: &'static str,
+    pub fg: Color,
+    pub bg: Color,
+}
+
+/// The cell for an upper and a lower pixel. Four cases: both present and equal → a space on that
+/// background (half the escape codes); both present → '▀' upper-on-lower; only the upper one
+/// (odd image height) → '▀' on the default background; none → an empty cell.
+pub fn half_block(upper: Option<[u8; 3]>, lower: Option<[u8; 3]>, mode: ColorMode) -> HalfBlock {
+    match (upper, lower) {
+        (Some(u), Some(l)) if u == l => HalfBlock {
+            symbol: " ",
+            fg: Color::Reset,
+            bg: mode.color(u),
+        },
+        (Some(u), Some(l)) => HalfBlock {
+            symbol: "▀",
+            fg: mode.color(u),
+            bg: mode.color(l),
+        },
+        (Some(u), None) => HalfBlock {
+            symbol: "▀",
+            fg: mode.color(u),
+            bg: Color::Reset,
+        },
+        (None, _) => HalfBlock {
+            symbol: " ",
+            fg: Color::Reset,
+            bg: Color::Reset,
+        },
+    }
+}
+
+/// The six levels of each channel in the xterm 6×6×6 colour cube (indices 16..=231).
+const CUBE: [u8; 6] = [0, 95, 135, 175, 215, 255];
+
+/// Index of the cube level nearest to `v`.
+fn cube_level(v: u8) -> usize {
+    CUBE.iter()
+        .enumerate()
+        .min_by_key(|(_, l)| (**l as i32 - v as i32).abs())
+        .map(|(i, _)| i)
+        .unwrap_or(0)
+}
+
+fn distance2(a: [u8; 3], b: [u8; 3]) -> i32 {
+    (0..3).map(|i| (a[i] as i32 - b[i] as i32).pow(2)).sum()
+}
+
+/// The xterm 256-colour index nearest to an sRGB triple: the best of the colour cube and the
+/// 24-step grey ramp (232..=255, grey 8 + 10·k). The 16 system colours vary between terminals
+/// and are never chosen.
+pub fn nearest_256(rgb: [u8; 3]) -> u8 {
+    let levels = rgb.map(cube_level);
+    let cube_rgb = levels.map(|l| CUBE[l]);
+    let cube_index = 16 + 36 * levels[0] + 6 * levels[1] + levels[2];
+    let mean = (rgb.iter().map(|&c| c as i32).sum::<i32>() / 3).clamp(8, 238);
+    let step = ((mean - 8 + 5) / 10).clamp(0, 23);
+    let grey = (8 + 10 * step) as u8;
+    if distance2(rgb, [grey; 3]) < distance2(rgb, cube_rgb) {
+        232 + step as u8
+    } else {
+        cube_index as u8
+    }
+}

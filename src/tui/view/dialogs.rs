@@ -1,0 +1,141 @@
+//! Pop-ups: the add menu, path prompts, the export dialog and the quit question.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Clear, List, ListItem, ListState, Paragraph, StatefulWidget, Widget, Wrap};
+
+use super::pane;
+use crate::tui::app::{AddKind, ExportField, ExportForm, LineEdit, PromptPurpose};
+
+/// A `width`×`height` rectangle centred in `area`, clipped to it.
+pub fn centered(area: Rect, width: u16, height: u16) -> Rect {
+    let (w, h) = (width.min(area.width), height.min(area.height));
+    Rect::new(
+        area.x + (area.width - w) / 2,
+        area.y + (area.height - h) / 2,
+        w,
+        h,
+    )
+}
+
+fn input_line(text: &str, active: bool) -> Span<'static> {
+    let style = if active {
+        Style::new().fg(Color::Black).bg(Color::White)
+    } else {
+        Style::new().fg(Color::White)
+    };
+    Span::styled(format!("{}{}", text, if active { "▏" } else { "" }), style)
+}
+
+fn error_line(error: &Option<String>) -> Line<'static> {
+    match error {
+        Some(e) => Line::styled(format!("✗ {e}"), Style::new().fg(Color::Red)),
+        None => Line::default(),
+    }
+}
+
+/// What can be added, with hotkeys.
+pub struct AddMenu(pub usize);
+
+impl Widget for AddMenu {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let popup = centered(area, 30, AddKind::ALL.len() as u16 + 2);
+        Clear.render(popup, buf);
+        let items: Vec<ListItem> = AddKind::ALL
+            .iter()
+            .map(|k| ListItem::new(format!("{}  {}", k.hotkey(), k.label())))
+            .collect();
+        let list = List::new(items)
+            .block(pane("Add", true))
+            .highlight_style(Style::new().bg(Color::Yellow).fg(Color::Black))
+            .highlight_symbol("▶");
+        StatefulWidget::render(
+            list,
+            popup,
+            buf,
+            &mut ListState::default().with_selected(Some(self.0)),
+        );
+    }
+}
+
+/// A typed path.
+pub struct Prompt<'a>(pub PromptPurpose, pub &'a LineEdit);
+
+impl Widget for Prompt<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let title = match self.0 {
+            PromptPurpose::SaveAs => "Save scene as",
+            PromptPurpose::Open => "Open scene (unsaved edits are dropped)",
+            PromptPurpose::ObjPath => "OBJ file (relative to the scene's folder)",
+        };
+        let popup = centered(area, 64, 5);
+        Clear.render(popup, buf);
+        Paragraph::new(vec![
+            Line::from(input_line(&self.1.text, true)),
+            error_line(&self.1.error),
+            Line::styled(
+                "Enter accept · Esc cancel",
+                Style::new().fg(Color::DarkGray),
+            ),
+        ])
+        .wrap(Wrap { trim: false })
+        .block(pane(title, true))
+        .render(popup, buf);
+    }
+}
+
+/// File, size, algorithm and samples of a PNG export.
+pub struct ExportDialog<'a>(pub &'a ExportForm);
+
+impl Widget for ExportDialog<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let form = self.0;
+        let popup = centered(area, 60, 9);
+        Clear.render(popup, buf);
+        let row = |label: &str, field: ExportField, value: String| {
+            let active = form.field == field;
+            Line::from(vec![
+                Span::styled(
+                    format!("{}{label:<10}", if active { "▶ " } else { "  " }),
+                    Style::new().fg(if active { Color::Yellow } else { Color::Gray }),
+                ),
+                input_line(&value, active),
+            ])
+        };
+        let algorithm = format!("◀ {} ▶", form.algorithm);
+        Paragraph::new(vec![
+            row("file", ExportField::Path, form.path.clone()),
+            row("size", ExportField::Size, form.size.clone()),
+            row("algorithm", ExportField::Algorithm, algorithm),
+            row("samples", ExportField::Samples, form.samples.clone()),
+            error_line(&form.error),
+            Line::styled(
+                "↑↓ field · ←→ algorithm · Enter export · Esc cancel",
+                Style::new().fg(Color::DarkGray),
+            ),
+        ])
+        .block(pane("Export PNG", true))
+        .render(popup, buf);
+    }
+}
+
+/// The question asked before quitting with unsaved edits.
+pub struct ConfirmQuit;
+
+impl Widget for ConfirmQuit {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let popup = centered(area, 44, 4);
+        Clear.render(popup, buf);
+        Paragraph::new(vec![
+            Line::from("The scene has unsaved edits."),
+            Line::styled(
+                "y quit · s save and quit · n stay",
+                Style::new().fg(Color::Yellow),
+            ),
+        ])
+        .block(pane("Quit?", true))
+        .render(popup, buf);
+    }
+}

@@ -1,0 +1,40 @@
+//! The help overlay: every key, from the one key map.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Constraint, Rect};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::widgets::{Cell, Clear, Row, Table, Widget};
+
+use super::dialogs::centered;
+use super::pane;
+use crate::tui::keys::KEYS;
+
+/// A centred table of [`KEYS`].
+pub struct HelpOverlay;
+
+impl Widget for HelpOverlay {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let popup = centered(area, 96, KEYS.len() as u16 + 3);
+        Clear.render(popup, buf);
+        let rows = KEYS.iter().map(|k| {
+            Row::new([
+                Cell::from(k.context).style(Style::new().fg(Color::DarkGray)),
+                Cell::from(k.keys).style(Style::new().fg(Color::Yellow)),
+                Cell::from(k.action),
+            ])
+        });
+        Table::new(
+            rows,
+            [
+                Constraint::Length(10),
+                Constraint::Length(22),
+                Constraint::Min(10),
+            ],
+        )
+        .header(
+            Row::new(["where", "keys", "what"]).style(Style::new().add_modifier(Modifier::BOLD)),
+        )
+        .block(pane("Keys · any key closes", true))
+        .render(popup, buf);
+    }
+}

@@ -1,0 +1,82 @@
+//! The preview pane: the rendered image as half blocks, or the three algorithms side by side.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Alignment, Rect};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::Line;
+use ratatui::widgets::{Paragraph, Widget};
+
+use super::{compare_panes, millis, pane};
+use crate::tui::app::{App, Focus};
+use crate::tui::preview::{ColorMode, PreviewImage, half_block};
+
+/// An image drawn into cells: cell (c, r) shows pixels (c, 2r) over (c, 2r + 1).
+pub struct Picture<'a> {
+    pub image: &'a PreviewImage,
+    pub mode: ColorMode,
+}
+
+impl Widget for Picture<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        for row in 0..area.height {
+            for col in 0..area.width {
+                let (x, y) = (col as u32, 2 * row as u32);
+                let cell = half_block(
+                    self.image.pixel(x, y),
+                    self.image.pixel(x, y + 1),
+                    self.mode,
+                );
+                if let Some(c) = buf.cell_mut((area.x + col, area.y + row)) {
+                    c.set_symbol(cell.symbol).set_fg(cell.fg).set_bg(cell.bg);
+                }
+            }
+        }
+    }
+}
+
+/// The bordered preview pane.
+pub struct PreviewPane<'a>(pub &'a App);
+
+impl Widget for PreviewPane<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let app = self.0;
+        let title = if app.compare {
+            "Preview · compare".to_string()
+        } else {
+            format!("Preview · {}", app.algorithm)
+        };
+        let block = pane(&title, app.focus == Focus::Preview);
+        let inner = block.inner(area);
+        block.render(area, buf);
+        if app.compare {
+            for (i, (algorithm, label, image)) in compare_panes(inner).into_iter().enumerate() {
+                let shot = app.compare_shots[i].as_ref();
+                let text = match shot {
+                    Some(s) => format!("{} {} {}", i + 1, algorithm, millis(app, s.millis)),
+                    None => format!("{} {} …", i + 1, algorithm),
+                };
+                Paragraph::new(text)
+                    .alignment(Alignment::Center)
+                    .style(Style::new().add_modifier(Modifier::BOLD))
+                    .render(label, buf);
+                if let Some(s) = shot {
+                    Picture {
+                        image: &s.image,
+                        mode: app.color,
+                    }
+                    .render(image, buf);
+                }
+            }
+        } else if let Some(shot) = &app.shot {
+            Picture {
+                image: &shot.image,
+                mode: app.color,
+            }
+            .render(inner, buf);
+        } else {
+            Paragraph::new(Line::styled("rendering…", Style::new().fg(Color::DarkGray)))
+                .alignment(Alignment::Center)
+                .render(inner, buf);
+        }
+    }
+}

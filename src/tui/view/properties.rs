@@ -1,0 +1,70 @@
+//! The properties of the selected item, with the value being typed and its error inline.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{List, ListItem, ListState, StatefulWidget, Widget};
+
+use super::pane;
+use crate::tui::app::{App, Focus, Mode};
+use crate::tui::fields::Part;
+
+/// Label and value of every property of the selected item.
+pub struct Properties<'a>(pub &'a App);
+
+impl Widget for Properties<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let app = self.0;
+        let focused = app.focus == Focus::Properties;
+        let Some(part) = Part::of(&app.scene, app.item()) else {
+            pane("Properties", focused).render(area, buf);
+            return;
+        };
+        let width = 16;
+        let items: Vec<ListItem> = part
+            .keys()
+            .into_iter()
+            .enumerate()
+            .map(|(i, key)| {
+                let label = Span::styled(
+                    format!("{:<width$}", key.label(&part)),
+                    Style::new().fg(Color::Gray),
+                );
+                match &app.mode {
+                    Mode::Edit(line) if i == app.field => {
+                        let mut lines = vec![Line::from(vec![
+                            label,
+                            Span::styled(
+                                format!("{}▏", line.text),
+                                Style::new().fg(Color::Black).bg(Color::White),
+                            ),
+                        ])];
+                        if let Some(error) = &line.error {
+                            lines.push(Line::styled(
+                                format!("  ✗ {error}"),
+                                Style::new().fg(Color::Red),
+                            ));
+                        }
+                        ListItem::new(lines)
+                    }
+                    _ => {
+                        let value = part.value(key).map(|v| v.to_string()).unwrap_or_default();
+                        ListItem::new(Line::from(vec![label, Span::raw(value)]))
+                    }
+                }
+            })
+            .collect();
+        let highlight = if focused {
+            Style::new().bg(Color::Yellow).fg(Color::Black)
+        } else {
+            Style::new()
+        };
+        let list = List::new(items)
+            .block(pane("Properties", focused))
+            .highlight_style(highlight)
+            .highlight_symbol("▶");
+        let mut state = ListState::default().with_selected(Some(app.field));
+        StatefulWidget::render(list, area, buf, &mut state);
+    }
+}

@@ -1,0 +1,60 @@
+//! The scene list: camera and settings, lights, objects.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{List, ListItem, ListState, StatefulWidget, Widget};
+
+use super::pane;
+use crate::tui::app::{App, Focus, Item};
+use crate::tui::text::clean;
+
+/// The list of items, the selected one highlighted.
+pub struct SceneList<'a>(pub &'a App);
+
+impl Widget for SceneList<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let app = self.0;
+        let focused = app.focus == Focus::List;
+        let items: Vec<ListItem> = app
+            .items()
+            .into_iter()
+            .map(|item| {
+                let (tag, name, color) = match item {
+                    Item::Settings => ("cam", "camera & scene".to_string(), Color::Cyan),
+                    Item::Light(i) => {
+                        let l = &app.scene.lights[i];
+                        let name = l.name.clone().unwrap_or_else(|| format!("light {}", i + 1));
+                        ("lit", name, Color::Yellow)
+                    }
+                    Item::Object(i) => {
+                        let o = &app.scene.objects[i];
+                        let tag = match o.shape.kind() {
+                            crate::scene::ShapeKind::Icosahedron => "ico",
+                            crate::scene::ShapeKind::Box => "box",
+                            crate::scene::ShapeKind::Prism => "prm",
+                            crate::scene::ShapeKind::Mesh => "obj",
+                        };
+                        (tag, o.label().to_string(), Color::Green)
+                    }
+                };
+                ListItem::new(Line::from(vec![
+                    Span::styled(format!("{tag} "), Style::new().fg(color)),
+                    Span::raw(clean(&name)),
+                ]))
+            })
+            .collect();
+        let highlight = if focused {
+            Style::new().bg(Color::Yellow).fg(Color::Black)
+        } else {
+            Style::new().add_modifier(Modifier::REVERSED)
+        };
+        let list = List::new(items)
+            .block(pane("Scene", focused))
+            .highlight_style(highlight)
+            .highlight_symbol("▶");
+        let mut state = ListState::default().with_selected(Some(app.selected));
+        StatefulWidget::render(list, area, buf, &mut state);
+    }
+}

@@ -1,0 +1,102 @@
+//! The status bar: algorithm, frame time, triangles, preview size, unsaved marker, file, the
+//! latest message or the export's progress, and the keys that matter in the current pane.
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Gauge, Paragraph, Widget};
+
+use super::millis;
+use crate::tui::app::{App, Focus, Mode, Tone};
+use crate::tui::text::clean;
+
+/// Two lines at the bottom of the screen.
+pub struct StatusBar<'a>(pub &'a App);
+
+/// The keys worth showing for the current mode and pane.
+pub fn hints(app: &App) -> &'static str {
+    match (&app.mode, app.focus) {
+        (Mode::Edit(_), _) => "type a value · Enter accept · Esc cancel · Ctrl-u clear",
+        (Mode::Prompt(..), _) => "type a path · Enter accept · Esc cancel",
+        (Mode::Export(_), _) => "↑↓ field · ←→ algorithm · Enter export · Esc cancel",
+        (Mode::AddMenu(_), _) => "↑↓ choose · Enter add · i b p l m · Esc cancel",
+        (Mode::ConfirmQuit, _) => "y quit without saving · s save and quit · n stay",
+        (Mode::Help, _) => "any key closes the help",
+        (Mode::Normal, Focus::List) => {
+            "↑↓ select · → properties · a add · d dup · x del · 1 2 3 algo · c compare · s save · e export · ? help · q quit"
+        }
+        (Mode::Normal, Focus::Properties) => {
+            "↑↓ property · ←→ step (Shift ×10) · Enter type · u undo · Tab pane · ? help · q quit"
+        }
+        (Mode::Normal, Focus::Preview) => {
+            "←→↑↓ orbit · Shift pan · +/- zoom · r reset · drag/wheel · 1 2 3 algo · c compare · ? help"
+        }
+    }
+}
+
+impl Widget for StatusBar<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let app = self.0;
+        let [top, bottom] = Layout::vertical([Constraint::Length(1); 2]).areas(area);
+        let sep = || Span::styled(" │ ", Style::new().fg(Color::DarkGray));
+        let algorithm = if app.compare {
+            "Compare".to_string()
+        } else {
+            app.algorithm.to_string()
+        };
+        let mut spans = vec![Span::styled(
+            format!(" {algorithm}"),
+            Style::new().fg(Color::Cyan).add_modifier(Modifier::BOLD),
+        )];
+        if let Some(shot) = &app.shot
+            && !app.compare
+        {
+            spans.extend([
+                sep(),
+                Span::raw(millis(app, shot.millis)),
+                sep(),
+                Span::raw(format!("{}×{} px", shot.image.width, shot.image.height)),
+            ]);
+        }
+        if let Some(t) = app.triangles {
+            spans.extend([sep(), Span::raw(format!("{t} tris"))]);
+        }
+        spans.push(sep());
+        if app.dirty {
+            spans.push(Span::styled("● modified ", Style::new().fg(Color::Yellow)));
+        }
+        spans.push(Span::raw(app.title()));
+        if let Some(status) = &app.status {
+            let style = match status.tone {
+                Tone::Info => Style::new().fg(Color::Green),
+                Tone::Error => Style::new().fg(Color::Red).add_modifier(Modifier::BOLD),
+            };
+            spans.extend([sep(), Span::styled(clean(&status.text), style)]);
+        }
+        let line = Line::from(spans);
+        match &app.export {
+            Some(job) => {
+                let gauge_width = 34.min(top.width / 2);
+                let [text, gauge] =
+                    Layout::horizontal([Constraint::Min(0), Constraint::Length(gauge_width)])
+                        .areas(top);
+                Paragraph::new(line).render(text, buf);
+                Gauge::default()
+                    .gauge_style(Style::new().fg(Color::Magenta).bg(Color::Black))
+                    .ratio(job.progress.fraction().clamp(0.0, 1.0))
+                    .label(format!(
+                        "export {:.0}% · Esc",
+                        job.progress.fraction() * 100.0
+                    ))
+                    .render(gauge, buf);
+            }
+            None => Paragraph::new(line).render(top, buf),
+        }
+        Paragraph::new(Line::styled(
+            format!(" {}", hints(app)),
+            Style::new().fg(Color::DarkGray),
+        ))
+        .render(bottom, buf);
+    }
+}

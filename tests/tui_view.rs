@@ -1,0 +1,240 @@
+//! Screens drawn with ratatui's TestBackend: insta snapshots of the layout and overlays, and the
+//! preview's cell colours checked pixel by pixel (snapshots hold no colours).
+
+use std::path::PathBuf;
+
+use glam::Vec3;
+use rastray::World;
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, render};
+use rastray::scene::default_scene;
+use rastray::tui::action::Action;
+use rastray::tui::app::{App, Focus, Shot};
+use rastray::tui::preview::{ColorMode, PreviewImage, nearest_256};
+use rastray::tui::update::apply;
+use rastray::tui::view::{Picture, layout};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::Color;
+use ratatui::widgets::Widget;
+
+/// A synthetic picture: left half bright, right half dark, so snapshots do not depend on the
+/// renderers; its upper and lower pixels differ on odd rows to exercise both cell kinds.
+fn stripes(width: u32, height: u32) -> PreviewImage {
+    let pixels = (0..height)
+        .flat_map(|y| (0..width).map(move |x| (x, y)))
+        .map(|(x, y)| match (x < width / 2, y % 2 == 0) {
+            (true, _) => [200, 60, 40],
+            (false, true) => [20, 30, 40],
+            (false, false) => [90, 90, 90],
+        })
+        .collect();
+    PreviewImage {
+        width,
+        height,
+        pixels,
+    }
+}
+
+fn app() -> App {
+    let mut app = App::new(default_scene(), None, PathBuf::from("."));
+    app.show_timings = false;
+    app.triangles = Some(112);
+    app
+}
+
+fn draw(app: &App, width: u16, height: u16) -> Terminal<TestBackend> {
+    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
+    terminal.draw(|f| f.render_widget(app, f.area())).unwrap();
+    terminal
+}
+
+/// Gives the app previews of the sizes its layout asks for.
+fn fill_previews(app: &mut App, width: u16, height: u16) {
+    let areas = layout(Rect::new(0, 0, width, height), app).unwrap();
+    let p = areas.picture;
+    app.shot = Some(Shot {
+        image: stripes(p.width as u32, 2 * p.height as u32),
+        millis: 1.0,
+    });
+    for (i, (_, _, image)) in rastray::tui::view::compare_panes(p).into_iter().enumerate() {
+        app.compare_shots[i] = Some(Shot {
+            image: stripes(image.width as u32, 2 * image.height as u32),
+            millis: 1.0,
+        });
+    }
+}
+
+#[test]
+fn main_layout() {
+    let mut app = app();
+    fill_previews(&mut app, 100, 30);
+    insta::assert_snapshot!(draw(&app, 100, 30).backend());
+}
+
+#[test]
+fn properties_of_an_object_while_typing_a_bad_value() {
+    let mut app = app();
+    fill_previews(&mut app, 100, 30);
+    app.selected = app.index_of(rastray::tui::app::Item::Object(1));
+    app.focus = Focus::Properties;
+    app.field = 4; // radius
+    for a in [
+        Action::Edit,
+        Action::ClearInput,
+        Action::Input('-'),
+        Action::Input('2'),
+        Action::Submit,
+    ] {
+        apply(&mut app, a);
+    }
+    insta::assert_snapshot!(draw(&app, 100, 30).backend());
+}
+
+#[test]
+fn help_overlay() {
+    let mut app = app();
+    fill_previews(&mut app, 110, 36);
+    apply(&mut app, Action::Help);
+    insta::assert_snapshot!(draw(&app, 110, 36).backend());
+}
+
+#[test]
+fn add_menu() {
+    let mut app = app();
+    fill_previews(&mut app, 100, 30);
+    apply(&mut app, Action::AddMenu);
+    apply(&mut app, Action::Down);
+    insta::assert_snapshot!(draw(&app, 100, 30).backend());
+}
+
+#[test]
+fn compare_view() {
+    let mut app = app();
+    apply(&mut app, Action::ToggleCompare);
+    fill_previews(&mut app, 100, 30);
+    app.focus = Focus::Preview;
+    insta::assert_snapshot!(draw(&app, 100, 30).backend());
+}
+
+#[test]
+fn export_dialog() {
+    let mut app = app();
+    fill_previews(&mut app, 100, 30);
+    apply(&mut app, Action::Export);
+    apply(&mut app, Action::Down);
+    insta::assert_snapshot!(draw(&app, 100, 30).backend());
+}
+
+#[test]
+fn a_tiny_terminal_says_so_without_panicking() {
+    let app = app();
+    draw(&app, 1, 1);
+    draw(&app, 0, 0);
+    for (w, h) in [(10, 5), (19, 8), (20, 7)] {
+        let terminal = draw(&app, w, h);
+        let text: String = terminal
+            .backend()
+            .buffer()
+            .content()
+            .iter()
+            .map(|c| c.symbol())
+            .collect();
+        assert!(text.contains("termin"), "{w}x{h}: {text:?}");
+    }
+    let terminal = draw(&app, 20, 8);
+    let text: String = terminal
+        .backend()
+        .buffer()
+        .content()
+        .iter()
+        .map(|c| c.symbol())
+        .collect();
+    assert!(!text.contains("too small"));
+}
+
+#[test]
+fn control_characters_in_names_are_not_drawn() {
+    let mut app = app();
+    app.scene.objects[0].name = Some("evil\x1b[2Jname\x07".into());
+    let terminal = draw(&app, 100, 30);
+    let text: String = terminal
+        .backend()
+        .buffer()
+        .content()
+        .iter()
+        .map(|c| c.symbol())
+        .collect();
+    assert!(text.contains("evil[2Jname"));
+    assert!(!text.contains('\x1b') && !text.contains('\x07'));
+}
+
+/// Draws `image` into a buffer the size of its cells.
+fn cells(image: &PreviewImage, mode: ColorMode) -> Buffer {
+    let area = Rect::new(0, 0, image.width as u16, image.height.div_ceil(2) as u16);
+    let mut buf = Buffer::empty(area);
+    Picture { image, mode }.render(area, &mut buf);
+    buf
+}
+
+#[test]
+fn upper_and_lower_halves_carry_their_pixels() {
+    // A real render of the default scene, so the check covers the path the editor uses.
+    let scene = default_scene();
+    let world = World::build(&scene, std::path::Path::new(".")).unwrap();
+    let frame = render(
+        &world,
+        &scene.camera,
+        &RenderOptions::new(Algorithm::Phong, 48, 32),
+        &Progress::new(),
+    )
+    .unwrap();
+    let image = PreviewImage::from_frame(&frame);
+    let buf = cells(&image, ColorMode::Truecolor);
+    let rgb = |p: [u8; 3]| Color::Rgb(p[0], p[1], p[2]);
+    let (mut halves, mut spaces) = (0, 0);
+    for row in 0..16u32 {
+        for col in 0..48u32 {
+            let cell = &buf[(col as u16, row as u16)];
+            let upper = frame.srgb8_at(col, 2 * row);
+            let lower = frame.srgb8_at(col, 2 * row + 1);
+            if upper == lower {
+                spaces += 1;
+                assert_eq!(cell.symbol(), " ");
+                assert_eq!(cell.bg, rgb(upper), "cell {col},{row}");
+            } else {
+                halves += 1;
+                assert_eq!(cell.symbol(), "▀");
+                assert_eq!(cell.fg, rgb(upper), "upper pixel of cell {col},{row}");
+                assert_eq!(cell.bg, rgb(lower), "lower pixel of cell {col},{row}");
+            }
+        }
+    }
+    assert!(
+        halves > 0 && spaces > 0,
+        "both kinds of cell appear ({halves}, {spaces})"
+    );
+}
+
+#[test]
+fn odd_heights_and_the_256_palette() {
+    let mut frame = Frame::filled(2, 3, Vec3::ZERO);
+    frame.pixels[0] = Vec3::ONE; // top-left white
+    frame.pixels[4] = Vec3::new(1.0, 0.0, 0.0); // bottom-left red, alone in the last row
+    let image = PreviewImage::from_frame(&frame);
+    let buf = cells(&image, ColorMode::Ansi256);
+    assert_eq!(buf[(0, 0)].symbol(), "▀");
+    assert_eq!(buf[(0, 0)].fg, Color::Indexed(231)); // white in the cube
+    assert_eq!(buf[(0, 0)].bg, Color::Indexed(16)); // black in the cube
+    assert_eq!(buf[(0, 1)].symbol(), "▀");
+    assert_eq!(buf[(0, 1)].fg, Color::Indexed(196)); // pure red
+    assert_eq!(buf[(0, 1)].bg, Color::Reset);
+}
+
+#[test]
+fn palette_picks_greys_for_greys() {
+    assert_eq!(nearest_256([128, 128, 128]), 244); // grey ramp: 8 + 10·12 = 128
+    assert_eq!(nearest_256([0, 0, 255]), 21);
+    assert_eq!(nearest_256([95, 135, 175]), 16 + 36 + 12 + 3);
+}
