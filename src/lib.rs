@@ -6,6 +6,7 @@
 #![forbid(unsafe_code)]
 
 pub mod atomic_file;
+pub mod bench;
 pub mod export;
 pub mod mesh;
 pub mod render;

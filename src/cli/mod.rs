@@ -1,6 +1,7 @@
 //! Command-line arguments and dispatch. Every user error comes back as an `anyhow` error that
 //! names the file, line or field; `main` prints it and exits with code 2.
 
+mod bench;
 mod info;
 mod render;
 
@@ -35,6 +36,8 @@ pub enum Command {
         /// Scene file.
         scene: PathBuf,
     },
+    /// Repeat the study's two experiments for the three algorithms and write a report.
+    Bench(bench::BenchArgs),
 }
 
 /// Runs the parsed command.
@@ -42,6 +45,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Info { scene }) => info::run(&scene),
+        Some(Command::Bench(args)) => bench::run_bench(&args),
         None => rastray::tui::run(cli.scene, cli.color.unwrap_or_else(ColorMode::detect)),
     }
 }

@@ -1,0 +1,65 @@
+//! The ray tracer on about a million triangles: an icosahedron with 8 subdivisions
+//! (20·4⁸ = 1,310,720 faces).
+//!
+//! `bvh build`: a 64×36 render, whose time is almost all BVH construction, since the hierarchy
+//! is built inside `render`. `primary rays`: a 640×360 render with shadows and reflections off,
+//! so every ray is a camera ray.
+
+use std::hint::black_box;
+use std::path::Path;
+use std::time::Duration;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use glam::Vec3;
+use rastray::render::{Algorithm, Progress, RenderOptions, render};
+use rastray::scene::{Camera, Light, Object, Shape};
+use rastray::{Scene, World};
+
+fn million_triangles() -> (Scene, World) {
+    let scene = Scene {
+        camera: Camera {
+            position: Vec3::new(0.0, 0.5, 3.5),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+            fov: 45.0,
+        },
+        lights: vec![Light::default()],
+        objects: vec![Object::new(Shape::Icosahedron {
+            center: Vec3::ZERO,
+            radius: 1.0,
+            subdivisions: 8,
+        })],
+        ..Scene::default()
+    };
+    let world = World::build(&scene, Path::new(".")).expect("a built-in scene builds");
+    assert_eq!(world.triangle_count(), 1_310_720);
+    (scene, world)
+}
+
+fn ray_tracer(c: &mut Criterion) {
+    let (scene, world) = million_triangles();
+    let mut group = c.benchmark_group("icosahedron k=8 (1.3M triangles)");
+    let build = RenderOptions::new(Algorithm::Ray, 64, 36);
+    group.bench_function("bvh build", |b| {
+        b.iter(|| black_box(render(&world, &scene.camera, &build, &Progress::new())))
+    });
+    let primary = RenderOptions {
+        shadows: false,
+        max_depth: Some(0),
+        ..RenderOptions::new(Algorithm::Ray, 640, 360)
+    };
+    group.bench_function("primary rays 640x360", |b| {
+        b.iter(|| black_box(render(&world, &scene.camera, &primary, &Progress::new())))
+    });
+    group.finish();
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default()
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(5));
+    targets = ray_tracer
+}
+criterion_main!(benches);

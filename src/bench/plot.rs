@@ -1,0 +1,195 @@
+//! The two line plots of the report, drawn with plotters into a pixel buffer and saved as PNG.
+//! The font is DejaVu Sans, bundled in the binary, so no system font is needed.
+
+use std::path::Path;
+use std::sync::Once;
+
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
+use plotters::prelude::*;
+use plotters::style::{FontStyle, register_font};
+
+use super::analysis::series;
+use super::experiments::Experiment;
+use super::runner::{BenchError, Measurement};
+use crate::atomic_file::write_atomically;
+use crate::render::{Algorithm, Size};
+
+/// File name of the time-against-area plot.
+pub const AREA_PLOT: &str = "time-vs-area.png";
+/// File name of the time-against-faces plot.
+pub const FACES_PLOT: &str = "time-vs-faces.png";
+/// Width and height of both plots, pixels.
+pub const PLOT_SIZE: (u32, u32) = (1200, 800);
+
+/// The family name the bundled font is registered under.
+const FONT: &str = "sans-serif";
+/// The study's crossover areas, Mpx, drawn as vertical guides on the area plot.
+const STUDY_MARKS: [(f64, &str); 2] = [
+    (3.28, "study: ray overtakes Z-buffer"),
+    (3.68, "study: Phong overtakes Gouraud"),
+];
+
+/// Line colour of each algorithm.
+fn color(algorithm: Algorithm) -> RGBColor {
+    match algorithm {
+        Algorithm::Gouraud => RGBColor(31, 119, 180),
+        Algorithm::Phong => RGBColor(255, 127, 14),
+        Algorithm::Ray => RGBColor(44, 160, 44),
+    }
+}
+
+/// Registers the bundled font once per process.
+fn register_bundled_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        register_font(FONT, FontStyle::Normal, dejavu::sans::regular())
+            .unwrap_or_else(|_| panic!("the bundled DejaVu Sans font is a valid TrueType font"));
+    });
+}
+
+/// Draws both plots of `results` (measured at `size`) into `dir`.
+pub fn write(dir: &Path, results: &[Measurement], size: Size) -> Result<(), BenchError> {
+    register_bundled_font();
+    let lines = |e| -> Vec<(Algorithm, Vec<(f64, f64)>)> {
+        Algorithm::ALL
+            .into_iter()
+            .map(|a| (a, series(results, e, a, size)))
+            .collect()
+    };
+    let area = lines(Experiment::Area);
+    let faces = lines(Experiment::Faces);
+    let (x_hi, y_hi) = extent(&area);
+    draw(
+        &dir.join(AREA_PLOT),
+        &format!("Time against total face area ({size}, few faces)"),
+        "total face area (Mpx at 1920×1080)",
+        0.0..x_hi.max(STUDY_MARKS[1].0) * 1.05,
+        0.0..y_hi * 1.1,
+        &area,
+        &STUDY_MARKS,
+    )?;
+    let (f_lo, f_hi, t_lo, t_hi) = log_extent(&faces);
+    draw(
+        &dir.join(FACES_PLOT),
+        &format!("Time against face count ({size}, constant area)"),
+        "faces (log scale)",
+        (f_lo * 0.8..f_hi * 1.25).log_scale(),
+        (t_lo * 0.8..t_hi * 1.25).log_scale(),
+        &faces,
+        &[],
+    )
+}
+
+/// Largest x and y over all lines (1 when there are none).
+fn extent(lines: &[(Algorithm, Vec<(f64, f64)>)]) -> (f64, f64) {
+    let points = lines.iter().flat_map(|l| l.1.iter());
+    let x = points.clone().map(|p| p.0).fold(0.0, f64::max);
+    let y = points.map(|p| p.1).fold(0.0, f64::max);
+    (if x > 0.0 { x } else { 1.0 }, if y > 0.0 { y } else { 1.0 })
+}
+
+/// Smallest and largest positive x and y over all lines, for log axes.
+fn log_extent(lines: &[(Algorithm, Vec<(f64, f64)>)]) -> (f64, f64, f64, f64) {
+    let points: Vec<(f64, f64)> = lines
+        .iter()
+        .flat_map(|l| l.1.iter().copied())
+        .filter(|p| p.0 > 0.0 && p.1 > 0.0)
+        .collect();
+    if points.is_empty() {
+        return (1.0, 10.0, 1.0, 10.0);
+    }
+    let lo = |f: fn(&(f64, f64)) -> f64| points.iter().map(f).fold(f64::INFINITY, f64::min);
+    let hi = |f: fn(&(f64, f64)) -> f64| points.iter().map(f).fold(0.0, f64::max);
+    (lo(|p| p.0), hi(|p| p.0), lo(|p| p.1), hi(|p| p.1))
+}
+
+/// Draws one plot of median time (ms) against `x` with one line per algorithm and vertical guides
+/// at `marks`, and saves it as a PNG of [`PLOT_SIZE`].
+fn draw<X, Y>(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    x_range: X,
+    y_range: Y,
+    lines: &[(Algorithm, Vec<(f64, f64)>)],
+    marks: &[(f64, &str)],
+) -> Result<(), BenchError>
+where
+    X: AsRangedCoord<Value = f64>,
+    Y: AsRangedCoord<Value = f64>,
+    X::CoordDescType: ValueFormatter<f64>,
+    Y::CoordDescType: ValueFormatter<f64>,
+{
+    let plot_error = |e: &dyn std::fmt::Display| BenchError::Plot {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    let (w, h) = PLOT_SIZE;
+    let mut buffer = vec![0u8; w as usize * h as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut buffer, PLOT_SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| plot_error(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, (FONT, 30))
+            .margin(20)
+            .x_label_area_size(60)
+            .y_label_area_size(80)
+            .build_cartesian_2d(x_range, y_range)
+            .map_err(|e| plot_error(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc("median render time (ms)")
+            .label_style((FONT, 18))
+            .axis_desc_style((FONT, 20))
+            .draw()
+            .map_err(|e| plot_error(&e))?;
+        for &(algorithm, ref points) in lines {
+            let style = color(algorithm).stroke_width(3);
+            chart
+                .draw_series(LineSeries::new(points.iter().copied(), style))
+                .map_err(|e| plot_error(&e))?
+                .label(algorithm.name())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 24, y)], color(algorithm).stroke_width(3))
+                });
+            chart
+                .draw_series(
+                    points
+                        .iter()
+                        .map(|&p| Circle::new(p, 5, color(algorithm).filled())),
+                )
+                .map_err(|e| plot_error(&e))?;
+        }
+        let y_bounds = chart.y_range();
+        for (i, &(x, label)) in marks.iter().enumerate() {
+            let grey = RGBColor(120 + 60 * i as u8, 120, 120).stroke_width(2);
+            chart
+                .draw_series(LineSeries::new(
+                    [(x, y_bounds.start), (x, y_bounds.end)],
+                    grey,
+                ))
+                .map_err(|e| plot_error(&e))?
+                .label(format!("{label} ({x} Mpx)"))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], grey));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .label_font((FONT, 18))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| plot_error(&e))?;
+        root.present().map_err(|e| plot_error(&e))?;
+    }
+    let image = image::RgbImage::from_raw(w, h, buffer).expect("the buffer holds w·h RGB pixels");
+    let mut png = Vec::new();
+    image
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .map_err(|e| plot_error(&e))?;
+    write_atomically(path, &png).map_err(|source| BenchError::Write {
+        path: path.to_path_buf(),
+        source,
+    })
+}

@@ -1,0 +1,151 @@
+//! Runs the sweeps: builds each point's world (not timed), records its face count and area, then
+//! times `render` for each algorithm `reps` times and keeps the median, minimum and maximum.
+//!
+//! Only the `render` call is timed. For the ray tracer that call includes building its BVH; for the
+//! Z-buffer it includes the vertex stage, rasterization and shading. Tessellating the scene into a
+//! world happens before and is not timed.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use indicatif::{ProgressBar, ProgressStyle};
+
+use super::area::{face_count, total_face_area};
+use super::experiments::{Experiment, Point, points};
+use super::report::ms;
+use crate::render::{Algorithm, Progress, RenderError, RenderOptions, Size, View, render};
+use crate::scene::SceneError;
+use crate::world::World;
+
+/// What one sweep run measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BenchConfig {
+    /// Image size of every render.
+    pub size: Size,
+    /// Timed renders per point and algorithm, ≥ 1.
+    pub reps: u32,
+    /// Fewer points, for a first look and for CI.
+    pub quick: bool,
+}
+
+/// One algorithm on one scene: timing summary over the repetitions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Measurement {
+    pub experiment: Experiment,
+    pub algorithm: Algorithm,
+    /// Triangles in the scene.
+    pub faces: usize,
+    /// Total projected face area, square pixels, overdraw included.
+    pub area_px: f64,
+    /// Median render time, milliseconds.
+    pub median_ms: f64,
+    /// Fastest render, milliseconds.
+    pub min_ms: f64,
+    /// Slowest render, milliseconds.
+    pub max_ms: f64,
+}
+
+/// Why a sweep stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum BenchError {
+    #[error("building the benchmark scene: {0}")]
+    Scene(#[from] SceneError),
+    #[error("rendering the benchmark scene: {0}")]
+    Render(#[from] RenderError),
+    #[error("writing {path}: {source}")]
+    Write {
+        path: std::path::PathBuf,
+        source: std::io::Error,
+    },
+    #[error("drawing {path}: {message}")]
+    Plot {
+        path: std::path::PathBuf,
+        message: String,
+    },
+}
+
+/// Median, minimum and maximum of `samples` in milliseconds; the median of an even count is the
+/// mean of the two middle values. `samples` must not be empty.
+pub fn summarize(samples: &[Duration]) -> (f64, f64, f64) {
+    let mut ms: Vec<f64> = samples.iter().map(|d| d.as_secs_f64() * 1e3).collect();
+    ms.sort_by(f64::total_cmp);
+    let n = ms.len();
+    let median = if n % 2 == 1 {
+        ms[n / 2]
+    } else {
+        0.5 * (ms[n / 2 - 1] + ms[n / 2])
+    };
+    (median, ms[0], ms[n - 1])
+}
+
+/// Times `render` of `world` with `options` `reps` times.
+pub fn time_render(
+    world: &World,
+    scene: &crate::scene::Scene,
+    options: &RenderOptions,
+    reps: u32,
+    mut each: impl FnMut(),
+) -> Result<Vec<Duration>, RenderError> {
+    (0..reps.max(1))
+        .map(|_| {
+            let progress = Progress::new();
+            let started = Instant::now();
+            let frame = render(world, &scene.camera, options, &progress)?;
+            let elapsed = started.elapsed();
+            std::hint::black_box(frame);
+            each();
+            Ok(elapsed)
+        })
+        .collect()
+}
+
+/// Runs both experiments for the three algorithms, reporting on `bar` (which may be hidden) and
+/// printing one line per point to standard output.
+pub fn run(config: &BenchConfig, bar: &ProgressBar) -> Result<Vec<Measurement>, BenchError> {
+    bar.set_message("preparing scenes");
+    let sweeps: Vec<Point> = Experiment::ALL
+        .into_iter()
+        .flat_map(|e| points(e, config.size, config.quick))
+        .collect();
+    let reps = config.reps.max(1);
+    bar.set_length((sweeps.len() * Algorithm::ALL.len()) as u64 * reps as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{msg:32} [{bar:40}] {pos}/{len} renders ({elapsed})")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    let mut results = Vec::new();
+    for point in &sweeps {
+        bar.set_message(format!("{} {}", point.experiment, point.label));
+        let world = World::build(&point.scene, Path::new("."))?;
+        let faces = face_count(&world);
+        let view = View::new(&point.scene.camera, config.size.width, config.size.height);
+        let area_px = total_face_area(&world, &view);
+        let mut line = format!(
+            "{:5} {:18} {:>8} faces {:>11.0} px ({:.3} Mpx):",
+            point.experiment.name(),
+            point.label,
+            faces,
+            area_px,
+            area_px / 1e6
+        );
+        for algorithm in Algorithm::ALL {
+            let options = RenderOptions::new(algorithm, config.size.width, config.size.height);
+            let times = time_render(&world, &point.scene, &options, reps, || bar.inc(1))?;
+            let (median_ms, min_ms, max_ms) = summarize(&times);
+            line.push_str(&format!(" {algorithm} {} ms", ms(median_ms)));
+            results.push(Measurement {
+                experiment: point.experiment,
+                algorithm,
+                faces,
+                area_px,
+                median_ms,
+                min_ms,
+                max_ms,
+            });
+        }
+        bar.suspend(|| println!("{line}"));
+    }
+    bar.finish_and_clear();
+    Ok(results)
+}

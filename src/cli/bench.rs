@@ -1,0 +1,175 @@
+//! `rastray bench`: the study's two experiments for the three algorithms, written as a CSV, a
+//! Markdown report and two plots; `rastray bench throughput SCENE`: throughput on one scene.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use clap::{Args, Subcommand};
+use indicatif::ProgressBar;
+use rastray::World;
+use rastray::bench::report::{CSV_FILE, REPORT_FILE};
+use rastray::bench::throughput::{RAY_COUNTS_ESTIMATED, measure, obj_scene};
+use rastray::bench::{BenchConfig, plot, report, run};
+use rastray::render::Size;
+
+/// Timed renders per point by default, and in quick mode.
+const DEFAULT_REPS: u32 = 5;
+const QUICK_REPS: u32 = 1;
+
+#[derive(Debug, Args)]
+#[command(args_conflicts_with_subcommands = true)]
+pub struct BenchArgs {
+    #[command(subcommand)]
+    pub command: Option<BenchCommand>,
+    /// Fewer points and one render per point: a first look in under a minute.
+    #[arg(long)]
+    pub quick: bool,
+    /// Directory for results.csv, report.md and the plots (created if missing).
+    #[arg(short, long, default_value = "bench-out")]
+    pub out: PathBuf,
+    /// Image size, WIDTHxHEIGHT.
+    #[arg(short, long, default_value = "1920x1080", value_parser = super::parse_size)]
+    pub size: Size,
+    /// Timed renders per point and algorithm (default 5, quick 1); the median is reported.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub reps: Option<u32>,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum BenchCommand {
+    /// Rasterizer Mtriangles/s and Mpixels/s, ray tracer Mrays/s and BVH build time on one scene.
+    Throughput(ThroughputArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ThroughputArgs {
+    /// Scene file (TOML), or an OBJ model shown alone.
+    pub scene: PathBuf,
+    /// Image size, WIDTHxHEIGHT.
+    #[arg(short, long, default_value = "1920x1080", value_parser = super::parse_size)]
+    pub size: Size,
+    /// Renders per algorithm; the median is reported.
+    #[arg(long, default_value_t = DEFAULT_REPS, value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub reps: u32,
+}
+
+pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
+    if let Some(BenchCommand::Throughput(t)) = &args.command {
+        return throughput(t);
+    }
+    let config = BenchConfig {
+        size: args.size,
+        reps: args
+            .reps
+            .unwrap_or(if args.quick { QUICK_REPS } else { DEFAULT_REPS }),
+        quick: args.quick,
+    };
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    let machine = machine();
+    println!(
+        "rastray bench: {}, {} render(s) per point, {machine}",
+        config.size, config.reps
+    );
+    let results = run(&config, &ProgressBar::new(0))?;
+    report::write(&args.out, &results, &config, &machine)?;
+    plot::write(&args.out, &results, config.size)?;
+    println!();
+    for claim in rastray::bench::analysis::claims(&results, config.size) {
+        println!("[{}] {}", claim.verdict.name(), claim.study);
+        println!("          rastray: {}", claim.ours);
+    }
+    println!(
+        "\nwrote {}, {}, {} and {} in {}",
+        CSV_FILE,
+        REPORT_FILE,
+        plot::AREA_PLOT,
+        plot::FACES_PLOT,
+        args.out.display()
+    );
+    Ok(())
+}
+
+/// Where the numbers come from: CPU model when known, threads, OS and architecture.
+fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|info| {
+            info.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split_once(':'))
+                .map(|(_, name)| name.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".to_string());
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    format!(
+        "{cpu}, {threads} threads, {} {}",
+        std::env::consts::OS,
+        std::env::consts::ARCH
+    )
+}
+
+fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
+    let is_obj = args
+        .scene
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    let (scene, base) = if is_obj {
+        let scene =
+            obj_scene(&args.scene).map_err(|e| anyhow::anyhow!("{}: {e}", args.scene.display()))?;
+        let base = args
+            .scene
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default();
+        (scene, base)
+    } else {
+        super::load_scene(Some(&args.scene))?
+    };
+    let world = World::build(&scene, &base)?;
+    let t = measure(&scene, &world, args.size, args.reps)?;
+    println!(
+        "{}: {} triangles at {}, median of {} render(s)",
+        args.scene.display(),
+        world.triangle_count(),
+        args.size,
+        args.reps
+    );
+    for r in &t.raster {
+        println!(
+            "{:8} {:9.2} ms  {:8.2} Mtriangles/s  {:8.2} Mpixels/s  ({:.2} Mpx/s of face area)",
+            r.algorithm.name(),
+            r.time.as_secs_f64() * 1e3,
+            r.mtriangles_per_s(),
+            r.mpixels_per_s(),
+            r.mfragments_per_s()
+        );
+    }
+    let ray = &t.ray;
+    let s = ray.stats;
+    println!(
+        "{:8} {:9.2} ms  BVH build {:.2} ms, tracing {:.2} ms",
+        "Ray",
+        ray.time.as_secs_f64() * 1e3,
+        s.bvh_build.as_secs_f64() * 1e3,
+        ray.trace_time().as_secs_f64() * 1e3
+    );
+    for (kind, count) in [
+        ("primary", s.primary),
+        ("shadow", s.shadow),
+        ("reflection", s.reflection),
+        ("all", s.primary + s.shadow + s.reflection),
+    ] {
+        println!(
+            "         {kind:10} {count:>12} rays  {:8.2} Mrays/s",
+            ray.mrays_per_s(count)
+        );
+    }
+    if RAY_COUNTS_ESTIMATED {
+        println!(
+            "note: the ray tracer does not report its ray counts yet: primary rays are estimated as \
+             one per pixel, shadow and reflection rays and the BVH build time are not measured"
+        );
+    }
+    Ok(())
+}
