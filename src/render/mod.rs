@@ -1,13 +1,18 @@
 //! The renderer core: one camera, one lighting function, three algorithms.
 
+pub mod accel;
 mod algorithm;
+pub mod bvh;
+mod bvh_build;
 pub mod camera;
 pub mod frame;
 pub mod gouraud;
+pub mod intersect;
 mod options;
 pub mod phong;
 pub mod progress;
 pub mod raster;
+pub mod ray;
 pub mod raytrace;
 pub mod shading;
 pub mod zbuffer;

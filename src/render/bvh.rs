@@ -1,0 +1,197 @@
+//! A bounding volume hierarchy over one mesh's triangles: flattened nodes in depth-first order
+//! and the triangles copied in leaf order, so a leaf's triangles sit side by side in memory.
+//!
+//! The tree is built by `bvh_build` (binned surface-area heuristic). Traversal visits the nearer
+//! child first and skips any node that starts beyond the nearest hit found so far.
+
+use glam::{Vec3, Vec3A};
+
+use super::bvh_build;
+use super::intersect::{Triangle, ray_box};
+use super::ray::Ray;
+use crate::mesh::Mesh;
+
+/// The deepest tree the builder makes; a node at this depth becomes a leaf whatever its size.
+/// It bounds the traversal stack.
+pub const MAX_TREE_DEPTH: usize = 60;
+
+/// One node: a box and either two children or a run of triangles. 32 bytes, two per cache line.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(32))]
+pub struct Node {
+    /// Box minimum corner, world units.
+    pub lo: Vec3,
+    /// Leaf: index of its first triangle. Inner node: offset from this node to its second child
+    /// (the first child always follows its parent).
+    pub start: u32,
+    /// Box maximum corner, world units.
+    pub hi: Vec3,
+    /// Number of triangles; 0 marks an inner node.
+    pub count: u32,
+}
+
+impl Node {
+    /// Whether the node holds triangles rather than children.
+    #[inline]
+    pub fn is_leaf(&self) -> bool {
+        self.count > 0
+    }
+
+    #[inline]
+    fn entry(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
+        ray_box(
+            ray,
+            Vec3A::from(self.lo),
+            Vec3A::from(self.hi),
+            t_min,
+            t_max,
+        )
+    }
+}
+
+/// The nearest hit in one mesh.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BvhHit {
+    /// Ray parameter of the hit.
+    pub t: f32,
+    /// Barycentric weight of the triangle's second vertex.
+    pub u: f32,
+    /// Barycentric weight of the triangle's third vertex.
+    pub v: f32,
+    /// Index of the triangle in the mesh.
+    pub triangle: u32,
+    /// Geometric normal of the triangle (e1 × e2, not normalised).
+    pub normal: Vec3A,
+}
+
+/// A BVH over one mesh. Invariant: every triangle of the mesh is in exactly one leaf.
+#[derive(Debug, Clone, Default)]
+pub struct Bvh {
+    /// Nodes in depth-first order, the root first; empty for a mesh without triangles.
+    pub nodes: Vec<Node>,
+    /// Triangles in leaf order.
+    pub triangles: Vec<Triangle>,
+    /// The mesh index of each entry of `triangles`.
+    pub ids: Vec<u32>,
+}
+
+impl Bvh {
+    /// Builds the hierarchy over `mesh` (in parallel for large meshes).
+    pub fn build(mesh: &Mesh) -> Bvh {
+        bvh_build::build(mesh)
+    }
+
+    /// Depth of the tree: 1 for a single leaf, 0 when empty.
+    pub fn depth(&self) -> usize {
+        fn depth_at(nodes: &[Node], i: usize) -> usize {
+            let n = &nodes[i];
+            if n.is_leaf() {
+                1
+            } else {
+                1 + depth_at(nodes, i + 1).max(depth_at(nodes, i + n.start as usize))
+            }
+        }
+        if self.nodes.is_empty() {
+            0
+        } else {
+            depth_at(&self.nodes, 0)
+        }
+    }
+
+    /// The nearest triangle hit with t in (t_min, t_max).
+    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<BvhHit> {
+        let mut best: Option<BvhHit> = None;
+        let mut t_max = t_max;
+        self.traverse(ray, t_min, &mut t_max, |k, t_max| {
+            let tri = &self.triangles[k];
+            if let Some(h) = tri.intersect(ray, t_min, *t_max) {
+                *t_max = h.t;
+                best = Some(BvhHit {
+                    t: h.t,
+                    u: h.u,
+                    v: h.v,
+                    triangle: self.ids[k],
+                    normal: tri.n,
+                });
+            }
+            false
+        });
+        best
+    }
+
+    /// Whether any triangle is hit with t in (t_min, t_max): the shadow-ray test.
+    pub fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+        let mut t_max = t_max;
+        self.traverse(ray, t_min, &mut t_max, |k, t_max| {
+            self.triangles[k].intersect(ray, t_min, *t_max).is_some()
+        })
+    }
+
+    /// Visits the leaves the ray segment reaches, nearer child first, calling `visit(triangle
+    /// slot, t_max)` for each of their triangles; `visit` may shrink `t_max` and returns true
+    /// to stop. Returns whether it was stopped.
+    #[inline]
+    fn traverse(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: &mut f32,
+        mut visit: impl FnMut(usize, &mut f32) -> bool,
+    ) -> bool {
+        let Some(root) = self.nodes.first() else {
+            return false;
+        };
+        let Some(entry) = root.entry(ray, t_min, *t_max) else {
+            return false;
+        };
+        // Pending far children with their entry distances.
+        let mut stack = [(0u32, 0f32); MAX_TREE_DEPTH + 1];
+        let mut top = 0;
+        let mut current = (0usize, entry);
+        loop {
+            let (index, entry) = current;
+            if entry <= *t_max {
+                let node = &self.nodes[index];
+                if node.is_leaf() {
+                    let first = node.start as usize;
+                    for k in first..first + node.count as usize {
+                        if visit(k, t_max) {
+                            return true;
+                        }
+                    }
+                } else {
+                    let (a, b) = (index + 1, index + node.start as usize);
+                    let ta = self.nodes[a].entry(ray, t_min, *t_max);
+                    let tb = self.nodes[b].entry(ray, t_min, *t_max);
+                    match (ta, tb) {
+                        (Some(ta), Some(tb)) => {
+                            let (near, far) = if ta <= tb {
+                                ((a, ta), (b, tb))
+                            } else {
+                                ((b, tb), (a, ta))
+                            };
+                            stack[top] = (far.0 as u32, far.1);
+                            top += 1;
+                            current = near;
+                            continue;
+                        }
+                        (Some(ta), None) => {
+                            current = (a, ta);
+                            continue;
+                        }
+                        (None, Some(tb)) => {
+                            current = (b, tb);
+                            continue;
+                        }
+                        (None, None) => {}
+                    }
+                }
+            }
+            if top == 0 {
+                return false;
+            }
+            top -= 1;
+            current = (stack[top].0 as usize, stack[top].1);
+        }
+    }
+}
