@@ -43,7 +43,8 @@ pub fn markdown(results: &[Measurement], config: &BenchConfig, machine: &str) ->
     let mut md = String::from("# rastray benchmark\n\n");
     let _ = writeln!(
         md,
-        "Image {size}, {} timed renders per point (median shown, min–max in brackets){}. {machine}\n",
+        "Image {size}, timed renders per point: {} (median shown, min–max in brackets){}. \
+         Measured on: {machine}\n",
         config.reps,
         if config.quick { ", quick mode" } else { "" }
     );
@@ -90,7 +91,10 @@ pub fn markdown(results: &[Measurement], config: &BenchConfig, machine: &str) ->
     md.push_str("## The study's claims beside ours\n\n");
     let _ = writeln!(
         md,
-        "A figure agrees when ours is within ×{AGREEMENT_FACTOR} of the study's.\n"
+        "A crossover agrees when ours is within ×{AGREEMENT_FACTOR} of the study's (the last \
+         crossing counts: the area beyond which one algorithm stays ahead); a speed ratio agrees \
+         when it is within ×{AGREEMENT_FACTOR} of the study's at three quarters of the points or \
+         more.\n"
     );
     md.push_str("| Study | rastray | Verdict | Why |\n|---|---|---|---|\n");
     for claim in claims(results, size) {

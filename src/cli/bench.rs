@@ -71,7 +71,14 @@ pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
         "rastray bench: {}, {} render(s) per point, {machine}",
         config.size, config.reps
     );
+    let load_before = load_average();
     let results = run(&config, &ProgressBar::new(0))?;
+    let machine = match (load_before, load_average()) {
+        (Some(before), Some(after)) => {
+            format!("{machine}; load average {before} before the run, {after} after.")
+        }
+        _ => format!("{machine}."),
+    };
     report::write(&args.out, &results, &config, &machine)?;
     plot::write(&args.out, &results, config.size)?;
     println!();
@@ -107,6 +114,13 @@ fn machine() -> String {
         std::env::consts::OS,
         std::env::consts::ARCH
     )
+}
+
+/// The one-minute load average, when the system reports it: other work on the machine shows up
+/// in the timings.
+fn load_average() -> Option<String> {
+    let text = std::fs::read_to_string("/proc/loadavg").ok()?;
+    text.split_whitespace().next().map(str::to_string)
 }
 
 fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
