@@ -165,9 +165,9 @@ fn table(results: &[Measurement], experiment: Experiment) -> String {
                     let _ = write!(
                         md,
                         " {} ({}–{}) |",
-                        ms(m.median_ms),
-                        ms(m.min_ms),
-                        ms(m.max_ms)
+                        number(m.median_ms),
+                        number(m.min_ms),
+                        number(m.max_ms)
                     );
                 }
                 None => md.push_str(" – |"),
@@ -178,16 +178,19 @@ fn table(results: &[Measurement], experiment: Experiment) -> String {
     md
 }
 
-/// Milliseconds with three significant digits or more.
-pub fn ms(value: f64) -> String {
+/// A non-negative measurement (milliseconds, rates) with about three significant digits;
+/// values under 0.01 in scientific notation.
+pub fn number(value: f64) -> String {
     let decimals = if value >= 100.0 {
         0
     } else if value >= 10.0 {
         1
     } else if value >= 1.0 {
         2
-    } else {
+    } else if value >= 0.01 || value == 0.0 {
         3
+    } else {
+        return format!("{value:.2e}");
     };
     format!("{value:.decimals$}")
 }
