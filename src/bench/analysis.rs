@@ -296,9 +296,9 @@ fn phong_overtakes(c: Comparison, gouraud: &Series, phong: &Series) -> Claim {
     ) {
         (Some(g), Some(p)) if p > 0.0 => {
             let change = (g / p - 1.0) * 100.0;
-            let word = if change > 0.0 { "slower" } else { "faster" };
+            let word = if change > 0.0 { "more" } else { "less" };
             format!(
-                " At {STUDY_LAG_AREA_MPX} Mpx Gouraud is {:.0}% {word} than Phong.",
+                " At {STUDY_LAG_AREA_MPX} Mpx Gouraud takes {:.0}% {word} time than Phong.",
                 change.abs()
             )
         }
