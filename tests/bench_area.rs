@@ -242,7 +242,7 @@ fn crossings_are_interpolated_between_points() {
     let c = compare(Algorithm::Ray, &a, Algorithm::Gouraud, &b);
     assert!(!c.first_faster_at_start);
     assert_eq!(c.crossings.len(), 1);
-    assert!((c.first_overtakes_at().unwrap() - 1.0).abs() < 1e-12);
+    assert!((c.first_ahead_beyond().unwrap() - 1.0).abs() < 1e-12);
     let none = compare(Algorithm::Ray, &b, Algorithm::Gouraud, &b);
     assert!(none.crossings.is_empty());
     assert_eq!(value_at(&b, 0.5), Some(7.5));

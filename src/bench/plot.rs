@@ -73,11 +73,32 @@ pub fn write(dir: &Path, results: &[Measurement], size: Size) -> Result<(), Benc
         &dir.join(FACES_PLOT),
         &format!("Time against face count ({size}, constant area)"),
         "faces (log scale)",
-        (f_lo * 0.8..f_hi * 1.25).log_scale(),
-        (t_lo * 0.8..t_hi * 1.25).log_scale(),
+        (decade_below(f_lo)..f_hi * 1.25).log_scale(),
+        (decade_below(t_lo)..t_hi * 1.25).log_scale(),
         &faces,
         &[],
     )
+}
+
+/// The power of ten at or below `v` (> 0): log axes that start on one get labels all along.
+fn decade_below(v: f64) -> f64 {
+    10f64.powf(v.log10().floor())
+}
+
+/// An axis label: 1.5, 20, 300, 40k, 1M.
+fn tick(value: &f64) -> String {
+    let v = *value;
+    let trimmed = |x: f64, suffix: &str| {
+        let text = format!("{x:.1}");
+        format!("{}{suffix}", text.trim_end_matches(".0"))
+    };
+    if v.abs() >= 1e6 {
+        trimmed(v / 1e6, "M")
+    } else if v.abs() >= 1e4 {
+        trimmed(v / 1e3, "k")
+    } else {
+        trimmed(v, "")
+    }
 }
 
 /// Largest x and y over all lines (1 when there are none).
@@ -138,6 +159,9 @@ where
             .map_err(|e| plot_error(&e))?;
         chart
             .configure_mesh()
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
+            .y_labels(12)
             .x_desc(x_label)
             .y_desc("median render time (ms)")
             .label_style((FONT, 18))

@@ -43,7 +43,8 @@ pub fn markdown(results: &[Measurement], config: &BenchConfig, machine: &str) ->
     let mut md = String::from("# rastray benchmark\n\n");
     let _ = writeln!(
         md,
-        "Image {size}, {} timed renders per point (median shown, min–max in brackets){}. {machine}\n",
+        "Image {size}, timed renders per point: {} (median shown, min–max in brackets){}. \
+         Measured on: {machine}\n",
         config.reps,
         if config.quick { ", quick mode" } else { "" }
     );
@@ -90,7 +91,10 @@ pub fn markdown(results: &[Measurement], config: &BenchConfig, machine: &str) ->
     md.push_str("## The study's claims beside ours\n\n");
     let _ = writeln!(
         md,
-        "A figure agrees when ours is within ×{AGREEMENT_FACTOR} of the study's.\n"
+        "A crossover agrees when ours is within ×{AGREEMENT_FACTOR} of the study's (the last \
+         crossing counts: the area beyond which one algorithm stays ahead); a speed ratio agrees \
+         when it is within ×{AGREEMENT_FACTOR} of the study's at three quarters of the points or \
+         more.\n"
     );
     md.push_str("| Study | rastray | Verdict | Why |\n|---|---|---|---|\n");
     for claim in claims(results, size) {
@@ -161,9 +165,9 @@ fn table(results: &[Measurement], experiment: Experiment) -> String {
                     let _ = write!(
                         md,
                         " {} ({}–{}) |",
-                        ms(m.median_ms),
-                        ms(m.min_ms),
-                        ms(m.max_ms)
+                        number(m.median_ms),
+                        number(m.min_ms),
+                        number(m.max_ms)
                     );
                 }
                 None => md.push_str(" – |"),
@@ -174,16 +178,19 @@ fn table(results: &[Measurement], experiment: Experiment) -> String {
     md
 }
 
-/// Milliseconds with three significant digits or more.
-pub fn ms(value: f64) -> String {
+/// A non-negative measurement (milliseconds, rates) with about three significant digits;
+/// values under 0.01 in scientific notation.
+pub fn number(value: f64) -> String {
     let decimals = if value >= 100.0 {
         0
     } else if value >= 10.0 {
         1
     } else if value >= 1.0 {
         2
-    } else {
+    } else if value >= 0.01 || value == 0.0 {
         3
+    } else {
+        return format!("{value:.2e}");
     };
     format!("{value:.decimals$}")
 }

@@ -1,5 +1,6 @@
 //! Runs the sweeps: builds each point's world (not timed), records its face count and area, then
-//! times `render` for each algorithm `reps` times and keeps the median, minimum and maximum.
+//! times `render` `reps` times for each algorithm, the three taking turns, and keeps the median,
+//! minimum and maximum.
 //!
 //! Only the `render` call is timed. For the ray tracer that call includes building its BVH; for the
 //! Z-buffer it includes the vertex stage, rasterization and shading. Tessellating the scene into a
@@ -12,9 +13,9 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use super::area::{face_count, total_face_area};
 use super::experiments::{Experiment, Point, points};
-use super::report::ms;
+use super::report::number;
 use crate::render::{Algorithm, Progress, RenderError, RenderOptions, Size, View, render};
-use crate::scene::SceneError;
+use crate::scene::{Camera, SceneError};
 use crate::world::World;
 
 /// What one sweep run measures.
@@ -78,25 +79,18 @@ pub fn summarize(samples: &[Duration]) -> (f64, f64, f64) {
     (median, ms[0], ms[n - 1])
 }
 
-/// Times `render` of `world` with `options` `reps` times.
+/// The time of one `render` of `world` seen by `camera` with `options`.
 pub fn time_render(
     world: &World,
-    scene: &crate::scene::Scene,
+    camera: &Camera,
     options: &RenderOptions,
-    reps: u32,
-    mut each: impl FnMut(),
-) -> Result<Vec<Duration>, RenderError> {
-    (0..reps.max(1))
-        .map(|_| {
-            let progress = Progress::new();
-            let started = Instant::now();
-            let frame = render(world, &scene.camera, options, &progress)?;
-            let elapsed = started.elapsed();
-            std::hint::black_box(frame);
-            each();
-            Ok(elapsed)
-        })
-        .collect()
+) -> Result<Duration, RenderError> {
+    let progress = Progress::new();
+    let started = Instant::now();
+    let frame = render(world, camera, options, &progress)?;
+    let elapsed = started.elapsed();
+    std::hint::black_box(frame);
+    Ok(elapsed)
 }
 
 /// Runs both experiments for the three algorithms, reporting on `bar` (which may be hidden) and
@@ -129,11 +123,19 @@ pub fn run(config: &BenchConfig, bar: &ProgressBar) -> Result<Vec<Measurement>, 
             area_px,
             area_px / 1e6
         );
-        for algorithm in Algorithm::ALL {
-            let options = RenderOptions::new(algorithm, config.size.width, config.size.height);
-            let times = time_render(&world, &point.scene, &options, reps, || bar.inc(1))?;
-            let (median_ms, min_ms, max_ms) = summarize(&times);
-            line.push_str(&format!(" {algorithm} {} ms", ms(median_ms)));
+        // Repetitions run the three algorithms in turn, so that a change in the machine's load
+        // during the point weighs on all three alike.
+        let mut times = vec![Vec::new(); Algorithm::ALL.len()];
+        for _ in 0..reps {
+            for (algorithm, samples) in Algorithm::ALL.into_iter().zip(&mut times) {
+                let options = RenderOptions::new(algorithm, config.size.width, config.size.height);
+                samples.push(time_render(&world, &point.scene.camera, &options)?);
+                bar.inc(1);
+            }
+        }
+        for (algorithm, samples) in Algorithm::ALL.into_iter().zip(&times) {
+            let (median_ms, min_ms, max_ms) = summarize(samples);
+            line.push_str(&format!(" {algorithm} {} ms", number(median_ms)));
             results.push(Measurement {
                 experiment: point.experiment,
                 algorithm,

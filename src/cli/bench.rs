@@ -7,7 +7,7 @@ use anyhow::Context;
 use clap::{Args, Subcommand};
 use indicatif::ProgressBar;
 use rastray::World;
-use rastray::bench::report::{CSV_FILE, REPORT_FILE};
+use rastray::bench::report::{CSV_FILE, REPORT_FILE, number};
 use rastray::bench::throughput::{RAY_COUNTS_ESTIMATED, measure, obj_scene};
 use rastray::bench::{BenchConfig, plot, report, run};
 use rastray::render::Size;
@@ -71,7 +71,14 @@ pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
         "rastray bench: {}, {} render(s) per point, {machine}",
         config.size, config.reps
     );
+    let load_before = load_average();
     let results = run(&config, &ProgressBar::new(0))?;
+    let machine = match (load_before, load_average()) {
+        (Some(before), Some(after)) => {
+            format!("{machine}; load average {before} before the run, {after} after.")
+        }
+        _ => format!("{machine}."),
+    };
     report::write(&args.out, &results, &config, &machine)?;
     plot::write(&args.out, &results, config.size)?;
     println!();
@@ -109,6 +116,13 @@ fn machine() -> String {
     )
 }
 
+/// The one-minute load average, when the system reports it: other work on the machine shows up
+/// in the timings.
+fn load_average() -> Option<String> {
+    let text = std::fs::read_to_string("/proc/loadavg").ok()?;
+    text.split_whitespace().next().map(str::to_string)
+}
+
 fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
     let is_obj = args
         .scene
@@ -137,22 +151,22 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
     );
     for r in &t.raster {
         println!(
-            "{:8} {:9.2} ms  {:8.2} Mtriangles/s  {:8.2} Mpixels/s  ({:.2} Mpx/s of face area)",
+            "{:8} {:>9} ms  {:>8} Mtriangles/s  {:>8} Mpixels/s  ({} Mpx/s of face area)",
             r.algorithm.name(),
-            r.time.as_secs_f64() * 1e3,
-            r.mtriangles_per_s(),
-            r.mpixels_per_s(),
-            r.mfragments_per_s()
+            number(r.time.as_secs_f64() * 1e3),
+            number(r.mtriangles_per_s()),
+            number(r.mpixels_per_s()),
+            number(r.mfragments_per_s())
         );
     }
     let ray = &t.ray;
     let s = ray.stats;
     println!(
-        "{:8} {:9.2} ms  BVH build {:.2} ms, tracing {:.2} ms",
+        "{:8} {:>9} ms  BVH build {} ms, tracing {} ms",
         "Ray",
-        ray.time.as_secs_f64() * 1e3,
-        s.bvh_build.as_secs_f64() * 1e3,
-        ray.trace_time().as_secs_f64() * 1e3
+        number(ray.time.as_secs_f64() * 1e3),
+        number(s.bvh_build.as_secs_f64() * 1e3),
+        number(ray.trace_time().as_secs_f64() * 1e3)
     );
     for (kind, count) in [
         ("primary", s.primary),
@@ -161,8 +175,8 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
         ("all", s.primary + s.shadow + s.reflection),
     ] {
         println!(
-            "         {kind:10} {count:>12} rays  {:8.2} Mrays/s",
-            ray.mrays_per_s(count)
+            "         {kind:10} {count:>12} rays  {:>8} Mrays/s",
+            number(ray.mrays_per_s(count))
         );
     }
     if RAY_COUNTS_ESTIMATED {
