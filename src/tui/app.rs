@@ -50,14 +50,17 @@ impl Focus {
 pub struct LineEdit {
     pub text: String,
     pub error: Option<String>,
+    /// The text is the old value, untouched: the first typed character replaces it.
+    pub pristine: bool,
 }
 
 impl LineEdit {
-    /// A line starting with `text`.
+    /// A line starting with `text`; typing a character replaces it, Backspace edits it.
     pub fn new(text: impl Into<String>) -> LineEdit {
         LineEdit {
             text: text.into(),
             error: None,
+            pristine: true,
         }
     }
 }

@@ -76,25 +76,21 @@ pub struct HalfBlock {
     pub bg: Color,
 }
 
-/// The cell for an upper and a lower pixel. Four cases: both present and equal → a space on that
-/// background (half the escape codes); both present → '▀' upper-on-lower; only the upper one
-/// (odd image height) → '▀' on the default background; none → an empty cell.
+/// The cell for an upper and a lower pixel. Four cases: both present and the same terminal
+/// colour → a space on that background (half the escape codes); both present → '▀' upper on
+/// lower; only the upper one (odd image height) → '▀' on the default background; none → empty.
 pub fn half_block(upper: Option<[u8; 3]>, lower: Option<[u8; 3]>, mode: ColorMode) -> HalfBlock {
+    let (upper, lower) = (upper.map(|c| mode.color(c)), lower.map(|c| mode.color(c)));
     match (upper, lower) {
         (Some(u), Some(l)) if u == l => HalfBlock {
             symbol: " ",
             fg: Color::Reset,
-            bg: mode.color(u),
+            bg: u,
         },
-        (Some(u), Some(l)) => HalfBlock {
+        (Some(u), l) => HalfBlock {
             symbol: "▀",
-            fg: mode.color(u),
-            bg: mode.color(l),
-        },
-        (Some(u), None) => HalfBlock {
-            symbol: "▀",
-            fg: mode.color(u),
-            bg: Color::Reset,
+            fg: u,
+            bg: l.unwrap_or(Color::Reset),
         },
         (None, _) => HalfBlock {
             symbol: " ",

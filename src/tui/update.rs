@@ -191,6 +191,19 @@ fn begin_edit(app: &mut App) {
 }
 
 /// Applies typing keys to `line`; returns whether the action was one of them.
+fn type_line(line: &mut LineEdit, action: &Action) -> bool {
+    if matches!(action, Action::Input(_)) && line.pristine {
+        line.text.clear();
+    }
+    let typed = type_into(&mut line.text, action);
+    if typed {
+        line.pristine = false;
+        line.error = None;
+    }
+    typed
+}
+
+/// Applies typing keys to `text`; returns whether the action was one of them.
 fn type_into(text: &mut String, action: &Action) -> bool {
     match action {
         Action::Input(c) if !c.is_control() => text.push(*c),
@@ -204,8 +217,7 @@ fn type_into(text: &mut String, action: &Action) -> bool {
 }
 
 fn edit(app: &mut App, mut line: LineEdit, action: Action) -> Mode {
-    if type_into(&mut line.text, &action) {
-        line.error = None;
+    if type_line(&mut line, &action) {
         return Mode::Edit(line);
     }
     match action {
@@ -397,8 +409,7 @@ fn base_of(path: &Path) -> PathBuf {
 }
 
 fn prompt(app: &mut App, purpose: PromptPurpose, mut line: LineEdit, action: Action) -> Mode {
-    if type_into(&mut line.text, &action) {
-        line.error = None;
+    if type_line(&mut line, &action) {
         return Mode::Prompt(purpose, line);
     }
     match action {
