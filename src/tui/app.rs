@@ -160,8 +160,8 @@ pub enum Mode {
     Edit(LineEdit),
     /// Choosing what to add; the index of the highlighted entry.
     AddMenu(usize),
-    /// The key overlay.
-    Help,
+    /// The key overlay, scrolled down this many rows.
+    Help(usize),
     /// Typing a path.
     Prompt(PromptPurpose, LineEdit),
     /// Choosing the export's file, size, algorithm and samples.

@@ -32,7 +32,13 @@ pub fn apply(app: &mut App, action: Action) {
         Mode::Normal => normal(app, action),
         Mode::Edit(line) => app.mode = edit(app, line, action),
         Mode::AddMenu(index) => app.mode = add_menu(app, index, action),
-        Mode::Help => {}
+        Mode::Help(scroll) => match action {
+            Action::Up => app.mode = Mode::Help(scroll.saturating_sub(1)),
+            Action::Down => {
+                app.mode = Mode::Help((scroll + 1).min(super::keys::KEYS.len().saturating_sub(1)))
+            }
+            _ => {}
+        },
         Mode::Prompt(purpose, line) => app.mode = prompt(app, purpose, line, action),
         Mode::Export(form) => app.mode = export_form(app, form, action),
         Mode::ConfirmQuit => match action {
@@ -72,7 +78,7 @@ fn normal(app: &mut App, action: Action) {
             Focus::List => app.focus = Focus::Properties,
             _ => begin_edit(app),
         },
-        Action::Help => app.mode = Mode::Help,
+        Action::Help => app.mode = Mode::Help(0),
         Action::AddMenu => app.mode = Mode::AddMenu(0),
         Action::Add(kind) => add(app, kind),
         Action::Duplicate => duplicate(app),

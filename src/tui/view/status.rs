@@ -22,7 +22,7 @@ pub fn hints(app: &App) -> &'static str {
         (Mode::Export(_), _) => "↑↓ field · ←→ algorithm · Enter export · Esc cancel",
         (Mode::AddMenu(_), _) => "↑↓ choose · Enter add · i b p l m · Esc cancel",
         (Mode::ConfirmQuit, _) => "y quit without saving · s save and quit · n stay",
-        (Mode::Help, _) => "any key closes the help",
+        (Mode::Help(_), _) => "↑↓ / j k scroll · any other key closes the help",
         (Mode::Normal, Focus::List) => {
             "↑↓ select · → properties · a add · d dup · x del · 1 2 3 algo · c compare · s save · e export · ? help · q quit"
         }
