@@ -89,7 +89,16 @@ fn normal(app: &mut App, action: Action) {
         Action::SaveAs => {
             app.mode = Mode::Prompt(PromptPurpose::SaveAs, LineEdit::new(path_text(app)))
         }
-        Action::Open => app.mode = Mode::Prompt(PromptPurpose::Open, LineEdit::default()),
+        Action::Open => {
+            // Offer the recovery file when there is one: the status line pointed at it.
+            let recovered = super::recovery::path_for(app.path.as_deref());
+            let text = if recovered.is_file() {
+                recovered.display().to_string()
+            } else {
+                String::new()
+            };
+            app.mode = Mode::Prompt(PromptPurpose::Open, LineEdit::new(text));
+        }
         Action::Export => open_export(app),
         Action::Algorithm(a) => {
             app.algorithm = a;
