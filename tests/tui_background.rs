@@ -166,3 +166,21 @@ fn a_bad_export_size_is_refused_in_the_dialog() {
     }
     assert!(app.export.is_none());
 }
+
+#[test]
+fn typing_in_an_export_field_replaces_its_value() {
+    let mut app = App::new(default_scene(), None, PathBuf::from("."));
+    apply(&mut app, Action::Export);
+    for c in "a.png".chars() {
+        apply(&mut app, Action::Input(c));
+    }
+    apply(&mut app, Action::Down);
+    apply(&mut app, Action::Backspace);
+    match &app.mode {
+        Mode::Export(form) => {
+            assert_eq!(form.path, "a.png");
+            assert_eq!(form.size, "1920x108", "Backspace edits the shown value");
+        }
+        other => panic!("the dialog is open, got {other:?}"),
+    }
+}

@@ -104,6 +104,8 @@ pub struct ExportForm {
     pub algorithm: Algorithm,
     pub samples: String,
     pub field: ExportField,
+    /// The field shows its old value: the first typed character replaces it.
+    pub pristine: bool,
     pub error: Option<String>,
 }
 

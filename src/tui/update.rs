@@ -496,6 +496,7 @@ fn open_export(app: &mut App) {
         algorithm: app.algorithm,
         samples: "1".into(),
         field: ExportField::Path,
+        pristine: true,
         error: None,
     });
 }
@@ -509,12 +510,18 @@ fn export_form(app: &mut App, mut form: ExportForm, action: Action) -> Mode {
         ExportField::Samples => Some(&mut form.samples),
         ExportField::Algorithm => None,
     };
-    if let Some(text) = text
-        && type_into(text, &action)
-    {
-        form.error = None;
-        return Mode::Export(form);
+    if let Some(text) = text {
+        // As in a spreadsheet: the first character typed into a field replaces its value.
+        if form.pristine && matches!(action, Action::Input(_)) {
+            text.clear();
+        }
+        if type_into(text, &action) {
+            form.pristine = false;
+            form.error = None;
+            return Mode::Export(form);
+        }
     }
+    form.pristine = true;
     match action {
         Action::Cancel => return Mode::Normal,
         Action::Up | Action::FocusPrev => form.field = fields[move_index(at, fields.len(), false)],
