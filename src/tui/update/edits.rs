@@ -164,25 +164,30 @@ pub(super) fn restore(app: &mut App, scene: Scene) {
 }
 
 pub(super) fn undo(app: &mut App) {
-    match app.undo.pop() {
-        Some(scene) => {
-            let now = std::mem::replace(&mut app.scene, scene.clone());
-            app.redo.push(now);
-            restore(app, scene);
-            app.info("undone");
-        }
-        None => app.error("nothing to undo"),
-    }
+    travel(app, true);
 }
 
 pub(super) fn redo(app: &mut App) {
-    match app.redo.pop() {
+    travel(app, false);
+}
+
+/// Moves one step back (`back`) or forward through the history.
+fn travel(app: &mut App, back: bool) {
+    let (from, to) = if back {
+        (&mut app.undo, &mut app.redo)
+    } else {
+        (&mut app.redo, &mut app.undo)
+    };
+    match from.pop() {
         Some(scene) => {
-            let now = std::mem::replace(&mut app.scene, scene.clone());
-            app.undo.push(now);
+            to.push(std::mem::replace(&mut app.scene, scene.clone()));
             restore(app, scene);
-            app.info("redone");
+            app.info(if back { "undone" } else { "redone" });
         }
-        None => app.error("nothing to redo"),
+        None => app.error(if back {
+            "nothing to undo"
+        } else {
+            "nothing to redo"
+        }),
     }
 }
