@@ -63,7 +63,9 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
     let worker = Worker::spawn(move |reply| {
         let _ = tx.send(Event::Render(reply));
     });
-    let mut guard = TerminalGuard::enter().context("cannot set up the terminal")?;
+    let mut guard = TerminalGuard::enter().context(
+        "cannot set up the terminal (the editor needs one; `rastray render` works without)",
+    )?;
     let mut state = Loop {
         worker,
         sent: None,
