@@ -30,6 +30,7 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use ratatui::crossterm::event::{self, Event as TermEvent};
 use ratatui::layout::Rect;
+use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
 
 use crate::scene::Scene;
 use action::Action;
@@ -47,7 +48,8 @@ enum Event {
 }
 
 /// Runs the editor on the scene at `scene_path` (the built-in scene when `None`) until the user
-/// quits or the process receives SIGTERM or SIGHUP.
+/// quits or the process receives SIGTERM, SIGHUP or SIGINT; unsaved edits then go to the
+/// recovery file.
 pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> {
     let mut app = load(scene_path.as_deref())?;
     app.color = color;
@@ -55,7 +57,8 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
         app.info(notice);
     }
     let signalled = Arc::new(AtomicBool::new(false));
-    for signal in [signal_hook::consts::SIGTERM, signal_hook::consts::SIGHUP] {
+    // Raw mode turns Ctrl-C into a key, so SIGINT only comes from `kill`: treat it like SIGTERM.
+    for signal in [SIGTERM, SIGHUP, SIGINT] {
         signal_hook::flag::register(signal, signalled.clone()).context("cannot watch signals")?;
     }
     let (tx, rx) = channel();
