@@ -86,8 +86,9 @@ impl Widget for StatusBar<'_> {
                     .gauge_style(Style::new().fg(Color::Magenta).bg(Color::Black))
                     .ratio(job.progress.fraction().clamp(0.0, 1.0))
                     .label(format!(
-                        "export {:.0}% · Esc",
-                        job.progress.fraction() * 100.0
+                        "export {:.0}% · {} s · Esc",
+                        job.progress.fraction() * 100.0,
+                        job.started.elapsed().as_secs()
                     ))
                     .render(gauge, buf);
             }
