@@ -72,6 +72,7 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
     let mut state = Loop {
         worker,
         sent: None,
+        latest: 0,
         scene: (u64::MAX, Arc::new(app.scene.clone())),
         latency: LatencyLog::from_env(),
         pending: None,
@@ -109,10 +110,12 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
                     }
                     input::map(&app, &ev, picture)
                 }
-                Event::Render(reply) => {
+                // A frame for a superseded request is stale: dropped.
+                Event::Render(reply) if reply.id() == state.latest => {
                     state.arrived(&reply);
                     Some(Action::Rendered(Box::new(reply)))
                 }
+                Event::Render(_) => None,
             };
             if let Some(action) = action {
                 update::apply(&mut app, action);
@@ -193,6 +196,8 @@ pub fn wanted(app: &App, picture: Rect) -> Option<Wanted> {
 struct Loop {
     worker: Worker,
     sent: Option<Wanted>,
+    /// Id of the newest request sent.
+    latest: u64,
     /// The scene shared with the worker, by generation.
     scene: (u64, Arc<Scene>),
     latency: Option<LatencyLog>,
@@ -223,6 +228,7 @@ impl Loop {
         let id = self
             .worker
             .request(wanted, self.scene.1.clone(), app.base_dir.clone());
+        self.latest = id;
         self.pending = key_at.map(|key_at| Pending {
             id,
             key_at,
