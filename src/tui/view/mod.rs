@@ -114,7 +114,9 @@ impl Widget for &App {
         match &self.mode {
             Mode::Help(scroll) => help::HelpOverlay(*scroll).render(area, buf),
             Mode::AddMenu(index) => dialogs::AddMenu(*index).render(area, buf),
-            Mode::Prompt(purpose, line) => dialogs::Prompt(*purpose, line).render(area, buf),
+            Mode::Prompt(purpose, line) => {
+                dialogs::Prompt(*purpose, line, self.dirty).render(area, buf)
+            }
             Mode::Export(form) => dialogs::ExportDialog(form).render(area, buf),
             Mode::ConfirmQuit => dialogs::ConfirmQuit.render(area, buf),
             Mode::Normal | Mode::Edit(_) => {}
