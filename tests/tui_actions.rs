@@ -275,3 +275,31 @@ fn adding_a_missing_obj_is_refused() {
     }
     assert_eq!(app.scene, before);
 }
+
+#[test]
+fn typing_replaces_the_shown_value_and_backspace_edits_it() {
+    let mut app = app();
+    app.selected = app.index_of(Item::Object(1));
+    choose(&mut app, Key::Radius);
+    run(&mut app, [Action::Edit, Action::Input('2'), Action::Submit]);
+    let Shape::Icosahedron { radius, .. } = app.scene.objects[1].shape else {
+        panic!()
+    };
+    assert_eq!(radius, 2.0);
+    // "2" → Backspace → "" → "15" … then Backspace keeps editing: "1".
+    run(
+        &mut app,
+        [
+            Action::Edit,
+            Action::Backspace,
+            Action::Input('1'),
+            Action::Input('5'),
+            Action::Backspace,
+            Action::Submit,
+        ],
+    );
+    let Shape::Icosahedron { radius, .. } = app.scene.objects[1].shape else {
+        panic!()
+    };
+    assert_eq!(radius, 1.0);
+}

@@ -9,7 +9,7 @@ use rastray::render::{Algorithm, Frame, Progress, RenderOptions, render};
 use rastray::scene::default_scene;
 use rastray::tui::action::Action;
 use rastray::tui::app::{App, Focus, Shot};
-use rastray::tui::preview::{ColorMode, PreviewImage, nearest_256};
+use rastray::tui::preview::{ColorMode, PreviewImage, halves_match, nearest_256};
 use rastray::tui::update::apply;
 use rastray::tui::view::{Picture, layout};
 use ratatui::Terminal;
@@ -199,7 +199,7 @@ fn upper_and_lower_halves_carry_their_pixels() {
             let cell = &buf[(col as u16, row as u16)];
             let upper = frame.srgb8_at(col, 2 * row);
             let lower = frame.srgb8_at(col, 2 * row + 1);
-            if upper == lower {
+            if halves_match(upper, lower) {
                 spaces += 1;
                 assert_eq!(cell.symbol(), " ");
                 assert_eq!(cell.bg, rgb(upper), "cell {col},{row}");
@@ -230,6 +230,29 @@ fn odd_heights_and_the_256_palette() {
     assert_eq!(buf[(0, 1)].symbol(), "▀");
     assert_eq!(buf[(0, 1)].fg, Color::Indexed(196)); // pure red
     assert_eq!(buf[(0, 1)].bg, Color::Reset);
+}
+
+#[test]
+fn nearly_equal_halves_share_one_colour() {
+    let image = PreviewImage {
+        width: 2,
+        height: 2,
+        pixels: vec![
+            [100, 100, 100],
+            [100, 100, 100],
+            [104, 96, 100],
+            [105, 100, 100],
+        ],
+    };
+    let buf = cells(&image, ColorMode::Truecolor);
+    assert_eq!(buf[(0, 0)].symbol(), " ");
+    assert_eq!(buf[(0, 0)].bg, Color::Rgb(100, 100, 100));
+    assert_eq!(
+        buf[(1, 0)].symbol(),
+        "▀",
+        "5 levels apart is drawn as two halves"
+    );
+    assert_eq!(buf[(1, 0)].bg, Color::Rgb(105, 100, 100));
 }
 
 #[test]

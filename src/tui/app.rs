@@ -50,14 +50,17 @@ impl Focus {
 pub struct LineEdit {
     pub text: String,
     pub error: Option<String>,
+    /// The text is the old value, untouched: the first typed character replaces it.
+    pub pristine: bool,
 }
 
 impl LineEdit {
-    /// A line starting with `text`.
+    /// A line starting with `text`; typing a character replaces it, Backspace edits it.
     pub fn new(text: impl Into<String>) -> LineEdit {
         LineEdit {
             text: text.into(),
             error: None,
+            pristine: true,
         }
     }
 }
@@ -101,6 +104,8 @@ pub struct ExportForm {
     pub algorithm: Algorithm,
     pub samples: String,
     pub field: ExportField,
+    /// The field shows its old value: the first typed character replaces it.
+    pub pristine: bool,
     pub error: Option<String>,
 }
 
@@ -157,8 +162,8 @@ pub enum Mode {
     Edit(LineEdit),
     /// Choosing what to add; the index of the highlighted entry.
     AddMenu(usize),
-    /// The key overlay.
-    Help,
+    /// The key overlay, scrolled down this many rows.
+    Help(usize),
     /// Typing a path.
     Prompt(PromptPurpose, LineEdit),
     /// Choosing the export's file, size, algorithm and samples.

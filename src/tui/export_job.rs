@@ -19,6 +19,8 @@ pub struct ExportJob {
     pub options: RenderOptions,
     /// Fraction done, and the cancel switch.
     pub progress: Arc<Progress>,
+    /// When the export started.
+    pub started: Instant,
     handle: JoinHandle<Result<f64, String>>,
 }
 
@@ -43,6 +45,7 @@ impl ExportJob {
             path,
             options,
             progress,
+            started: Instant::now(),
             handle,
         }
     }

@@ -42,7 +42,11 @@ fn key_action(app: &App, key: &KeyEvent) -> Option<Action> {
                 .map(Action::Add),
             _ => None,
         },
-        Mode::Help => Some(Action::Cancel),
+        Mode::Help(_) => match key.code {
+            KeyCode::Up | KeyCode::Char('k') => Some(Action::Up),
+            KeyCode::Down | KeyCode::Char('j') => Some(Action::Down),
+            _ => Some(Action::Cancel),
+        },
         Mode::ConfirmQuit => match key.code {
             KeyCode::Char('y') | KeyCode::Char('Y') => Some(Action::QuitNow),
             KeyCode::Char('s') | KeyCode::Char('S') => Some(Action::SaveAndQuit),

@@ -86,6 +86,11 @@ pub const KEYS: &[KeyHelp] = &[
     k("preview", "Shift-arrows / H L K J", "pan the camera"),
     k("mouse", "drag on the preview", "orbit the camera"),
     k("mouse", "wheel on the preview", "zoom"),
+    k(
+        "help",
+        "↑ ↓ / k j",
+        "scroll this help; any other key closes it",
+    ),
     k("dialogs", "Enter / Esc", "accept / cancel"),
     k(
         "dialogs",

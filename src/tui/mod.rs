@@ -30,6 +30,7 @@ use std::time::{Duration, Instant};
 use anyhow::Context;
 use ratatui::crossterm::event::{self, Event as TermEvent};
 use ratatui::layout::Rect;
+use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
 
 use crate::scene::Scene;
 use action::Action;
@@ -47,7 +48,8 @@ enum Event {
 }
 
 /// Runs the editor on the scene at `scene_path` (the built-in scene when `None`) until the user
-/// quits or the process receives SIGTERM or SIGHUP.
+/// quits or the process receives SIGTERM, SIGHUP or SIGINT; unsaved edits then go to the
+/// recovery file.
 pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> {
     let mut app = load(scene_path.as_deref())?;
     app.color = color;
@@ -55,7 +57,8 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
         app.info(notice);
     }
     let signalled = Arc::new(AtomicBool::new(false));
-    for signal in [signal_hook::consts::SIGTERM, signal_hook::consts::SIGHUP] {
+    // Raw mode turns Ctrl-C into a key, so SIGINT only comes from `kill`: treat it like SIGTERM.
+    for signal in [SIGTERM, SIGHUP, SIGINT] {
         signal_hook::flag::register(signal, signalled.clone()).context("cannot watch signals")?;
     }
     let (tx, rx) = channel();
@@ -63,10 +66,13 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
     let worker = Worker::spawn(move |reply| {
         let _ = tx.send(Event::Render(reply));
     });
-    let mut guard = TerminalGuard::enter().context("cannot set up the terminal")?;
+    let mut guard = TerminalGuard::enter().context(
+        "cannot set up the terminal (the editor needs one; `rastray render` works without)",
+    )?;
     let mut state = Loop {
         worker,
         sent: None,
+        latest: 0,
         scene: (u64::MAX, Arc::new(app.scene.clone())),
         latency: LatencyLog::from_env(),
         pending: None,
@@ -104,10 +110,12 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
                     }
                     input::map(&app, &ev, picture)
                 }
-                Event::Render(reply) => {
+                // A frame for a superseded request is stale: dropped.
+                Event::Render(reply) if reply.id() == state.latest => {
                     state.arrived(&reply);
                     Some(Action::Rendered(Box::new(reply)))
                 }
+                Event::Render(_) => None,
             };
             if let Some(action) = action {
                 update::apply(&mut app, action);
@@ -188,6 +196,8 @@ pub fn wanted(app: &App, picture: Rect) -> Option<Wanted> {
 struct Loop {
     worker: Worker,
     sent: Option<Wanted>,
+    /// Id of the newest request sent.
+    latest: u64,
     /// The scene shared with the worker, by generation.
     scene: (u64, Arc<Scene>),
     latency: Option<LatencyLog>,
@@ -218,6 +228,7 @@ impl Loop {
         let id = self
             .worker
             .request(wanted, self.scene.1.clone(), app.base_dir.clone());
+        self.latest = id;
         self.pending = key_at.map(|key_at| Pending {
             id,
             key_at,

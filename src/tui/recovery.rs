@@ -34,7 +34,7 @@ pub fn notice(scene_path: Option<&Path>) -> Option<String> {
     let path = path_for(scene_path);
     path.is_file().then(|| {
         format!(
-            "unsaved edits from an earlier session were kept in {} (o opens it)",
+            "earlier unsaved edits are in {} (o opens it)",
             path.display()
         )
     })

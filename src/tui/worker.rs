@@ -69,6 +69,15 @@ pub enum RenderReply {
     Failed { id: u64, message: String },
 }
 
+impl RenderReply {
+    /// The request this reply answers.
+    pub fn id(&self) -> u64 {
+        match self {
+            RenderReply::Shot { id, .. } | RenderReply::Failed { id, .. } => *id,
+        }
+    }
+}
+
 /// Handle to the render thread.
 pub struct Worker {
     tx: Sender<Request>,

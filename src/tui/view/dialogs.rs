@@ -60,14 +60,15 @@ impl Widget for AddMenu {
     }
 }
 
-/// A typed path.
-pub struct Prompt<'a>(pub PromptPurpose, pub &'a LineEdit);
+/// A typed path; the flag says whether the scene has unsaved edits.
+pub struct Prompt<'a>(pub PromptPurpose, pub &'a LineEdit, pub bool);
 
 impl Widget for Prompt<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let title = match self.0 {
             PromptPurpose::SaveAs => "Save scene as",
-            PromptPurpose::Open => "Open scene (unsaved edits are dropped)",
+            PromptPurpose::Open if self.2 => "Open scene (unsaved edits are dropped)",
+            PromptPurpose::Open => "Open scene",
             PromptPurpose::ObjPath => "OBJ file (relative to the scene's folder)",
         };
         let popup = centered(area, 64, 5);

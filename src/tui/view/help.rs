@@ -9,14 +9,14 @@ use super::dialogs::centered;
 use super::pane;
 use crate::tui::keys::KEYS;
 
-/// A centred table of [`KEYS`].
-pub struct HelpOverlay;
+/// A centred table of [`KEYS`], scrolled down by the given number of rows.
+pub struct HelpOverlay(pub usize);
 
 impl Widget for HelpOverlay {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let popup = centered(area, 96, KEYS.len() as u16 + 3);
         Clear.render(popup, buf);
-        let rows = KEYS.iter().map(|k| {
+        let rows = KEYS.iter().skip(self.0).map(|k| {
             Row::new([
                 Cell::from(k.context).style(Style::new().fg(Color::DarkGray)),
                 Cell::from(k.keys).style(Style::new().fg(Color::Yellow)),
@@ -34,7 +34,7 @@ impl Widget for HelpOverlay {
         .header(
             Row::new(["where", "keys", "what"]).style(Style::new().add_modifier(Modifier::BOLD)),
         )
-        .block(pane("Keys · any key closes", true))
+        .block(pane("Keys · j/k scroll · any other key closes", true))
         .render(popup, buf);
     }
 }

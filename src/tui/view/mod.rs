@@ -112,9 +112,11 @@ impl Widget for &App {
         picture::PreviewPane(self).render(areas.preview, buf);
         status::StatusBar(self).render(areas.status, buf);
         match &self.mode {
-            Mode::Help => help::HelpOverlay.render(area, buf),
+            Mode::Help(scroll) => help::HelpOverlay(*scroll).render(area, buf),
             Mode::AddMenu(index) => dialogs::AddMenu(*index).render(area, buf),
-            Mode::Prompt(purpose, line) => dialogs::Prompt(*purpose, line).render(area, buf),
+            Mode::Prompt(purpose, line) => {
+                dialogs::Prompt(*purpose, line, self.dirty).render(area, buf)
+            }
             Mode::Export(form) => dialogs::ExportDialog(form).render(area, buf),
             Mode::ConfirmQuit => dialogs::ConfirmQuit.render(area, buf),
             Mode::Normal | Mode::Edit(_) => {}

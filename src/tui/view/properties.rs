@@ -21,7 +21,8 @@ impl Widget for Properties<'_> {
             pane("Properties", focused).render(area, buf);
             return;
         };
-        let width = 16;
+        // Labels take up to 16 columns, leaving at least 6 for the value in a narrow pane.
+        let width = 16.min(area.width.saturating_sub(9) as usize);
         let items: Vec<ListItem> = part
             .keys()
             .into_iter()

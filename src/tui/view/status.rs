@@ -22,7 +22,7 @@ pub fn hints(app: &App) -> &'static str {
         (Mode::Export(_), _) => "↑↓ field · ←→ algorithm · Enter export · Esc cancel",
         (Mode::AddMenu(_), _) => "↑↓ choose · Enter add · i b p l m · Esc cancel",
         (Mode::ConfirmQuit, _) => "y quit without saving · s save and quit · n stay",
-        (Mode::Help, _) => "any key closes the help",
+        (Mode::Help(_), _) => "↑↓ / j k scroll · any other key closes the help",
         (Mode::Normal, Focus::List) => {
             "↑↓ select · → properties · a add · d dup · x del · 1 2 3 algo · c compare · s save · e export · ? help · q quit"
         }
@@ -86,8 +86,9 @@ impl Widget for StatusBar<'_> {
                     .gauge_style(Style::new().fg(Color::Magenta).bg(Color::Black))
                     .ratio(job.progress.fraction().clamp(0.0, 1.0))
                     .label(format!(
-                        "export {:.0}% · Esc",
-                        job.progress.fraction() * 100.0
+                        "export {:.0}% · {} s · Esc",
+                        job.progress.fraction() * 100.0,
+                        job.started.elapsed().as_secs()
                     ))
                     .render(gauge, buf);
             }

@@ -1,0 +1,42 @@
+//! The editor's preview path on the default scene in a 160×48-cell pane: render the 160×96
+//! frame with the core `render`, encode it, and draw the whole screen into a buffer. Terminal
+//! output is not included (see docs for the key-to-screen figures measured in tmux).
+
+use std::path::PathBuf;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use rastray::World;
+use rastray::render::{Algorithm, Progress, RenderOptions, render};
+use rastray::scene::default_scene;
+use rastray::tui::app::{App, Shot};
+use rastray::tui::preview::PreviewImage;
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+
+fn preview(c: &mut Criterion) {
+    let scene = default_scene();
+    let world = World::build(&scene, &PathBuf::from(".")).unwrap();
+    // 196×52 cells leave a 160×48-cell preview inside the editor's layout.
+    let mut terminal = Terminal::new(TestBackend::new(196, 52)).unwrap();
+    let mut app = App::new(scene.clone(), None, PathBuf::from("."));
+    for algorithm in [Algorithm::Gouraud, Algorithm::Phong, Algorithm::Ray] {
+        app.algorithm = algorithm;
+        let options = RenderOptions::new(algorithm, 160, 96);
+        c.bench_function(
+            &format!("preview 160x48 cells {algorithm}: render+draw"),
+            |b| {
+                b.iter(|| {
+                    let frame = render(&world, &scene.camera, &options, &Progress::new()).unwrap();
+                    app.shot = Some(Shot {
+                        image: PreviewImage::from_frame(&frame),
+                        millis: 0.0,
+                    });
+                    terminal.draw(|f| f.render_widget(&app, f.area())).unwrap();
+                })
+            },
+        );
+    }
+}
+
+criterion_group!(benches, preview);
+criterion_main!(benches);

@@ -1,0 +1,220 @@
+//! Files: saving, opening, typed paths, and the PNG export started from its dialog.
+
+use std::path::{Path, PathBuf};
+
+use super::edits::add_object;
+use super::{move_index, type_into, type_line};
+use crate::render::{Algorithm, RenderOptions, Size};
+use crate::scene::{Object, Shape, ShapeKind};
+use crate::tui::action::Action;
+use crate::tui::app::{App, ExportField, ExportForm, LineEdit, Mode, PromptPurpose};
+use crate::tui::export_job::ExportJob;
+
+pub(super) fn path_text(app: &App) -> String {
+    app.path
+        .as_ref()
+        .map(|p| p.display().to_string())
+        .unwrap_or_else(|| "scene.toml".into())
+}
+
+pub(super) fn save(app: &mut App) {
+    match app.path.clone() {
+        Some(path) => save_to(app, &path).unwrap_or_else(|e| app.error(e)),
+        None => app.mode = Mode::Prompt(PromptPurpose::SaveAs, LineEdit::new(path_text(app))),
+    }
+}
+
+pub(super) fn save_to(app: &mut App, path: &Path) -> Result<(), String> {
+    crate::scene::save(&app.scene, path).map_err(|e| e.to_string())?;
+    app.dirty = false;
+    if app.path.as_deref() != Some(path) {
+        app.base_dir = base_of(path);
+        app.path = Some(path.to_path_buf());
+        app.generation += 1;
+    }
+    app.info(format!("saved {}", path.display()));
+    Ok(())
+}
+
+pub(super) fn base_of(path: &Path) -> PathBuf {
+    path.parent().map(Path::to_path_buf).unwrap_or_default()
+}
+
+pub(super) fn prompt(
+    app: &mut App,
+    purpose: PromptPurpose,
+    mut line: LineEdit,
+    action: Action,
+) -> Mode {
+    if type_line(&mut line, &action) {
+        return Mode::Prompt(purpose, line);
+    }
+    match action {
+        Action::Cancel => return Mode::Normal,
+        Action::Submit => {}
+        _ => return Mode::Prompt(purpose, line),
+    }
+    let text = line.text.trim().to_string();
+    if text.is_empty() {
+        line.error = Some("type a path".into());
+        return Mode::Prompt(purpose, line);
+    }
+    let path = PathBuf::from(&text);
+    let result = match purpose {
+        PromptPurpose::SaveAs => save_to(app, &path),
+        PromptPurpose::Open => open(app, &path),
+        PromptPurpose::ObjPath => {
+            if app.base_dir.join(&path).is_file() {
+                add_object(
+                    app,
+                    Object::new(Shape::new(ShapeKind::Mesh, app.scene.camera.target, path)),
+                );
+                Ok(())
+            } else {
+                Err(format!(
+                    "{} is not a file",
+                    app.base_dir.join(&path).display()
+                ))
+            }
+        }
+    };
+    match result {
+        Ok(()) => Mode::Normal,
+        Err(message) => {
+            line.error = Some(message);
+            Mode::Prompt(purpose, line)
+        }
+    }
+}
+
+/// Replaces the scene with the one at `path`.
+pub fn open(app: &mut App, path: &Path) -> Result<(), String> {
+    let scene = crate::scene::load(path).map_err(|e| e.to_string())?;
+    let mut fresh = App::new(scene, Some(path.to_path_buf()), base_of(path));
+    fresh.algorithm = app.algorithm;
+    fresh.compare = app.compare;
+    fresh.color = app.color;
+    fresh.show_timings = app.show_timings;
+    fresh.generation = app.generation + 1;
+    fresh.export = app.export.take();
+    fresh.info(format!("opened {}", path.display()));
+    *app = fresh;
+    Ok(())
+}
+
+pub(super) fn open_export(app: &mut App) {
+    if app.export.is_some() {
+        return app.error("an export is already running (Esc cancels it)");
+    }
+    let stem = app
+        .path
+        .as_ref()
+        .and_then(|p| p.file_stem())
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "render".into());
+    app.mode = Mode::Export(ExportForm {
+        path: format!("{stem}.png"),
+        size: "1920x1080".into(),
+        algorithm: app.algorithm,
+        samples: "1".into(),
+        field: ExportField::Path,
+        pristine: true,
+        error: None,
+    });
+}
+
+pub(super) fn export_form(app: &mut App, mut form: ExportForm, action: Action) -> Mode {
+    let fields = ExportField::ALL;
+    let at = fields.iter().position(|&f| f == form.field).unwrap_or(0);
+    let text = match form.field {
+        ExportField::Path => Some(&mut form.path),
+        ExportField::Size => Some(&mut form.size),
+        ExportField::Samples => Some(&mut form.samples),
+        ExportField::Algorithm => None,
+    };
+    if let Some(text) = text {
+        // As in a spreadsheet: the first character typed into a field replaces its value.
+        if form.pristine && matches!(action, Action::Input(_)) {
+            text.clear();
+        }
+        if type_into(text, &action) {
+            form.pristine = false;
+            form.error = None;
+            return Mode::Export(form);
+        }
+    }
+    form.pristine = true;
+    match action {
+        Action::Cancel => return Mode::Normal,
+        Action::Up | Action::FocusPrev => form.field = fields[move_index(at, fields.len(), false)],
+        Action::Down | Action::FocusNext => form.field = fields[move_index(at, fields.len(), true)],
+        Action::Step(n) if form.field == ExportField::Algorithm => {
+            let i = Algorithm::ALL
+                .iter()
+                .position(|&a| a == form.algorithm)
+                .unwrap_or(0);
+            form.algorithm = Algorithm::ALL[(i as i32 + n.signum()).rem_euclid(3) as usize];
+        }
+        Action::Input(c @ '1'..='3') if form.field == ExportField::Algorithm => {
+            form.algorithm = Algorithm::ALL[c as usize - '1' as usize];
+        }
+        Action::Submit => match start_export(app, &form) {
+            Ok(()) => return Mode::Normal,
+            Err(message) => form.error = Some(message),
+        },
+        _ => {}
+    }
+    Mode::Export(form)
+}
+
+pub(super) fn start_export(app: &mut App, form: &ExportForm) -> Result<(), String> {
+    let size: Size = form
+        .size
+        .parse()
+        .map_err(|e: crate::render::SizeError| e.to_string())?;
+    let samples: u32 = form
+        .samples
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{}` is not a sample count", form.samples.trim()))?;
+    let options = RenderOptions {
+        samples,
+        ..RenderOptions::new(form.algorithm, size.width, size.height)
+    };
+    options.check().map_err(|e| e.to_string())?;
+    let path = PathBuf::from(form.path.trim());
+    if path.as_os_str().is_empty() {
+        return Err("type the PNG's path".into());
+    }
+    app.export = Some(ExportJob::start(
+        app.scene.clone(),
+        &app.base_dir,
+        options,
+        path.clone(),
+    ));
+    app.info(format!(
+        "exporting {} ({} {size})…",
+        path.display(),
+        form.algorithm
+    ));
+    Ok(())
+}
+
+pub(super) fn cancel_export(app: &mut App) {
+    if let Some(job) = &app.export {
+        job.progress.cancel();
+        app.info("cancelling the export…");
+    }
+}
+
+pub(super) fn poll_export(app: &mut App) {
+    if !app.export.as_ref().is_some_and(|j| j.is_finished()) {
+        return;
+    }
+    let Some(job) = app.export.take() else { return };
+    let path = job.path.clone();
+    match job.finish() {
+        Ok(ms) => app.info(format!("exported {} in {:.0} ms", path.display(), ms)),
+        Err(message) => app.error(format!("export: {message}")),
+    }
+}

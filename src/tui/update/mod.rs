@@ -1,0 +1,239 @@
+//! Applies an [`Action`] to the [`App`]: the one place the editor's state changes.
+
+mod edits;
+mod files;
+
+pub use files::open;
+
+use edits::{add, begin_edit, commit, duplicate, move_camera, redo, remove, step_field, undo};
+use files::{cancel_export, export_form, open_export, path_text, poll_export, prompt, save};
+
+use super::action::Action;
+use super::app::{AddKind, App, Focus, LineEdit, Mode, PromptPurpose, Shot};
+use super::fields::{self, Part};
+use super::orbit;
+use super::worker::{RenderReply, Slot};
+
+/// Degrees turned per mouse column dragged.
+const DRAG_YAW: f32 = 2.0;
+/// Degrees turned per mouse row dragged (rows are about twice as tall as columns).
+const DRAG_PITCH: f32 = 4.0;
+
+/// Carries out `action`.
+pub fn apply(app: &mut App, action: Action) {
+    match action {
+        Action::Rendered(reply) => return rendered(app, *reply),
+        Action::Tick => return poll_export(app),
+        _ => {}
+    }
+    match std::mem::take(&mut app.mode) {
+        Mode::Normal => normal(app, action),
+        Mode::Edit(line) => app.mode = edit(app, line, action),
+        Mode::AddMenu(index) => app.mode = add_menu(app, index, action),
+        Mode::Help(scroll) => match action {
+            Action::Up => app.mode = Mode::Help(scroll.saturating_sub(1)),
+            Action::Down => {
+                app.mode = Mode::Help((scroll + 1).min(super::keys::KEYS.len().saturating_sub(1)))
+            }
+            _ => {}
+        },
+        Mode::Prompt(purpose, line) => app.mode = prompt(app, purpose, line, action),
+        Mode::Export(form) => app.mode = export_form(app, form, action),
+        Mode::ConfirmQuit => match action {
+            Action::QuitNow => app.quit = true,
+            Action::SaveAndQuit => {
+                save(app);
+                app.quit = !app.dirty;
+            }
+            Action::Cancel => {}
+            _ => app.mode = Mode::ConfirmQuit,
+        },
+    }
+}
+
+fn normal(app: &mut App, action: Action) {
+    match action {
+        Action::Quit if app.dirty => app.mode = Mode::ConfirmQuit,
+        Action::Quit | Action::QuitNow => app.quit = true,
+        Action::FocusNext => app.focus = app.focus.next(),
+        Action::FocusPrev => app.focus = app.focus.prev(),
+        Action::Up | Action::Down => {
+            let down = action == Action::Down;
+            match app.focus {
+                Focus::Properties => {
+                    let n = field_keys(app).len();
+                    app.field = move_index(app.field, n, down);
+                }
+                _ => {
+                    let n = app.items().len();
+                    app.selected = move_index(app.selected, n, down);
+                    app.field = 0;
+                }
+            }
+        }
+        Action::Step(times) => step_field(app, times),
+        Action::Edit => match app.focus {
+            Focus::List => app.focus = Focus::Properties,
+            _ => begin_edit(app),
+        },
+        Action::Help => app.mode = Mode::Help(0),
+        Action::AddMenu => app.mode = Mode::AddMenu(0),
+        Action::Add(kind) => add(app, kind),
+        Action::Duplicate => duplicate(app),
+        Action::Remove => remove(app),
+        Action::Undo => undo(app),
+        Action::Redo => redo(app),
+        Action::Save => save(app),
+        Action::SaveAs => {
+            app.mode = Mode::Prompt(PromptPurpose::SaveAs, LineEdit::new(path_text(app)))
+        }
+        Action::Open => {
+            // Offer the recovery file when there is one: the status line pointed at it.
+            let recovered = crate::tui::recovery::path_for(app.path.as_deref());
+            let text = if recovered.is_file() {
+                recovered.display().to_string()
+            } else {
+                String::new()
+            };
+            app.mode = Mode::Prompt(PromptPurpose::Open, LineEdit::new(text));
+        }
+        Action::Export => open_export(app),
+        Action::Algorithm(a) => {
+            app.algorithm = a;
+            app.compare = false;
+        }
+        Action::ToggleCompare => app.compare = !app.compare,
+        Action::Orbit { yaw, pitch } => {
+            move_camera(app, orbit::orbit(&app.scene.camera, yaw, pitch))
+        }
+        Action::Pan { right, up } => move_camera(app, orbit::pan(&app.scene.camera, right, up)),
+        Action::Zoom(f) => move_camera(app, orbit::zoom(&app.scene.camera, f)),
+        Action::ResetView => move_camera(app, app.home),
+        Action::DragStart { column, row } => app.drag = Some((column, row)),
+        Action::DragTo { column, row } => {
+            if let Some((c0, r0)) = app.drag.replace((column, row)) {
+                let yaw = -(column as f32 - c0 as f32) * DRAG_YAW;
+                let pitch = (row as f32 - r0 as f32) * DRAG_PITCH;
+                if yaw != 0.0 || pitch != 0.0 {
+                    move_camera(app, orbit::orbit(&app.scene.camera, yaw, pitch));
+                }
+            }
+        }
+        Action::DragEnd => app.drag = None,
+        Action::Cancel => cancel_export(app),
+        _ => {}
+    }
+}
+
+/// `i` moved one place up or down in a list of `n`, wrapping around.
+fn move_index(i: usize, n: usize, down: bool) -> usize {
+    match (n, down) {
+        (0, _) => 0,
+        (_, true) => (i + 1) % n,
+        (_, false) => (i + n - 1) % n,
+    }
+}
+
+/// The properties of the selected item.
+pub fn field_keys(app: &App) -> Vec<fields::Key> {
+    Part::of(&app.scene, app.item())
+        .map(|p| p.keys())
+        .unwrap_or_default()
+}
+
+fn chosen_key(app: &App) -> Option<fields::Key> {
+    field_keys(app).get(app.field).copied()
+}
+
+/// Applies typing keys to `line`; returns whether the action was one of them.
+fn type_line(line: &mut LineEdit, action: &Action) -> bool {
+    if matches!(action, Action::Input(_)) && line.pristine {
+        line.text.clear();
+    }
+    let typed = type_into(&mut line.text, action);
+    if typed {
+        line.pristine = false;
+        line.error = None;
+    }
+    typed
+}
+
+/// Applies typing keys to `text`; returns whether the action was one of them.
+fn type_into(text: &mut String, action: &Action) -> bool {
+    match action {
+        Action::Input(c) if !c.is_control() => text.push(*c),
+        Action::Backspace => {
+            text.pop();
+        }
+        Action::ClearInput => text.clear(),
+        _ => return false,
+    }
+    true
+}
+
+fn edit(app: &mut App, mut line: LineEdit, action: Action) -> Mode {
+    if type_line(&mut line, &action) {
+        return Mode::Edit(line);
+    }
+    match action {
+        Action::Cancel => Mode::Normal,
+        Action::Submit => {
+            let Some(key) = chosen_key(app) else {
+                return Mode::Normal;
+            };
+            match fields::typed(&app.scene, app.item(), key, &line.text) {
+                Ok(new) => {
+                    commit(app, new);
+                    app.camera_streak = false;
+                    Mode::Normal
+                }
+                Err(message) => {
+                    line.error = Some(message);
+                    Mode::Edit(line)
+                }
+            }
+        }
+        _ => Mode::Edit(line),
+    }
+}
+
+fn add_menu(app: &mut App, index: usize, action: Action) -> Mode {
+    let n = AddKind::ALL.len();
+    match action {
+        Action::Up | Action::Down => Mode::AddMenu(move_index(index, n, action == Action::Down)),
+        Action::Submit => {
+            add(app, AddKind::ALL[index.min(n - 1)]);
+            std::mem::take(&mut app.mode)
+        }
+        Action::Add(kind) => {
+            add(app, kind);
+            std::mem::take(&mut app.mode)
+        }
+        Action::Cancel => Mode::Normal,
+        _ => Mode::AddMenu(index),
+    }
+}
+
+fn rendered(app: &mut App, reply: RenderReply) {
+    match reply {
+        RenderReply::Shot {
+            slot,
+            image,
+            millis,
+            triangles,
+            ..
+        } => {
+            app.triangles = Some(triangles);
+            let shot = Some(Shot { image, millis });
+            match slot {
+                Slot::Main => app.shot = shot,
+                Slot::Compare(i) => {
+                    if let Some(s) = app.compare_shots.get_mut(i) {
+                        *s = shot;
+                    }
+                }
+            }
+        }
+        RenderReply::Failed { message, .. } => app.error(message),
+    }
+}
