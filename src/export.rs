@@ -13,11 +13,11 @@ pub enum ExportError {
         path: std::path::PathBuf,
         message: String,
     },
-    #[error("{path}: {source}")]
+    #[error("{path}: {error}")]
     Io {
         path: std::path::PathBuf,
-        #[source]
-        source: std::io::Error,
+        /// Shown in the message itself (not chained as a source, which would print it twice).
+        error: std::io::Error,
     },
 }
 
@@ -41,8 +41,8 @@ pub fn save_png(frame: &Frame, path: &Path) -> Result<(), ExportError> {
         path: path.to_path_buf(),
         message: e.to_string(),
     })?;
-    write_atomically(path, &bytes).map_err(|source| ExportError::Io {
+    write_atomically(path, &bytes).map_err(|error| ExportError::Io {
         path: path.to_path_buf(),
-        source,
+        error,
     })
 }

@@ -311,3 +311,37 @@ fn supersampling_averages_the_samples_of_each_pixel() {
         assert!((smooth.pixel(x, y) - sum / 9.0).abs().max_element() < 1e-5);
     }
 }
+
+#[test]
+fn strips_rendered_separately_join_into_the_whole_image() {
+    // Large and supersampled images are rendered in horizontal strips; a strip must be exactly
+    // the same rows of the whole render.
+    let scene = common::default_scene();
+    let world = common::world(&scene);
+    let whole = View::new(&scene.camera, 160, 97);
+    let progress = rastray::render::Progress::new();
+    for algorithm in [Algorithm::Gouraud, Algorithm::Phong] {
+        let draw = |view: &View| {
+            match algorithm {
+                Algorithm::Gouraud => rastray::render::gouraud::render(&world, view, &progress),
+                _ => rastray::render::phong::render(&world, view, &progress),
+            }
+            .expect("render")
+        };
+        let reference = draw(&whole);
+        let mut joined = Vec::new();
+        for (first, rows) in [(0, 40), (40, 1), (41, 56)] {
+            joined.extend(draw(&whole.rows(first, rows)).pixels);
+        }
+        let differing = reference
+            .pixels
+            .iter()
+            .zip(&joined)
+            .filter(|(a, b)| a != b)
+            .count();
+        assert_eq!(
+            differing, 0,
+            "{algorithm}: {differing} pixels differ between strips and the whole"
+        );
+    }
+}

@@ -28,8 +28,12 @@ pub struct View {
     pub aspect: f32,
     /// Image width in pixels.
     pub width: u32,
-    /// Image height in pixels.
+    /// Rows in this view: the whole image, or a horizontal strip of it (see [`View::rows`]).
     pub height: u32,
+    /// First image row of this view (0 for the whole image).
+    pub row_offset: u32,
+    /// Height of the whole image, pixels: the projection depends on it, not on the strip.
+    pub image_height: u32,
 }
 
 impl View {
@@ -47,6 +51,20 @@ impl View {
             aspect: width as f32 / height as f32,
             width,
             height,
+            row_offset: 0,
+            image_height: height,
+        }
+    }
+
+    /// The strip of `count` rows starting at row `first` of this view: the same projection,
+    /// with row 0 of the strip being row `first`. Renders of strips put side by side equal a
+    /// render of the whole, in a fraction of the memory.
+    pub fn rows(&self, first: u32, count: u32) -> View {
+        debug_assert!(first + count <= self.height, "strip outside the view");
+        View {
+            height: count,
+            row_offset: self.row_offset + first,
+            ..*self
         }
     }
 
@@ -55,7 +73,7 @@ impl View {
     #[inline]
     pub fn ray_direction(&self, x: f32, y: f32) -> Vec3 {
         let ndc_x = 2.0 * x / self.width as f32 - 1.0;
-        let ndc_y = 1.0 - 2.0 * y / self.height as f32;
+        let ndc_y = 1.0 - 2.0 * (y + self.row_offset as f32) / self.image_height as f32;
         (self.forward
             + self.right * (ndc_x * self.tan_half_fov * self.aspect)
             + self.up * (ndc_y * self.tan_half_fov))
@@ -74,13 +92,13 @@ impl View {
         )
     }
 
-    /// Continuous pixel coordinates of a clip-space point with w > 0.
+    /// Continuous pixel coordinates (within this view's rows) of a clip-space point with w > 0.
     #[inline]
     pub fn clip_to_pixel(&self, c: Vec3) -> Vec2 {
         let inv_w = 1.0 / c.z;
         Vec2::new(
             (c.x * inv_w + 1.0) * 0.5 * self.width as f32,
-            (1.0 - c.y * inv_w) * 0.5 * self.height as f32,
+            (1.0 - c.y * inv_w) * 0.5 * self.image_height as f32 - self.row_offset as f32,
         )
     }
 }

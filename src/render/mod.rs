@@ -35,9 +35,13 @@ pub enum RenderError {
     Cancelled(#[from] Cancelled),
 }
 
+/// Samples rendered at once: larger images are rendered in strips of about this many samples,
+/// each box-filtered before the next starts, so memory stays bounded and progress flows.
+const STRIP_SAMPLES: u64 = 1 << 22;
+
 /// Renders `world` seen by `camera` with `options`: the one entry point behind the PNG export,
 /// the terminal preview and the benchmark. Supersampling renders N× larger and box-filters down,
-/// the same for every algorithm.
+/// the same for every algorithm. `progress` counts rows of the supersampled image.
 pub fn render(
     world: &World,
     camera: &Camera,
@@ -46,11 +50,24 @@ pub fn render(
 ) -> Result<Frame, RenderError> {
     options.check()?;
     let n = options.samples;
-    let view = View::new(camera, options.width * n, options.height * n);
-    let frame = match options.algorithm {
-        Algorithm::Gouraud => gouraud::render(world, &view, progress)?,
-        Algorithm::Phong => phong::render(world, &view, progress)?,
-        Algorithm::Ray => raytrace::render(world, &view, options, progress)?,
-    };
-    Ok(frame.downsample(n))
+    let full = View::new(camera, options.width * n, options.height * n);
+    progress.start(full.height as u64);
+    let strip_rows = (STRIP_SAMPLES / (full.width as u64 * (n * n) as u64))
+        .clamp(1, options.height as u64) as u32;
+    let mut pixels = Vec::with_capacity(options.width as usize * options.height as usize);
+    for first in (0..options.height).step_by(strip_rows as usize) {
+        let rows = strip_rows.min(options.height - first);
+        let view = full.rows(first * n, rows * n);
+        let strip = match options.algorithm {
+            Algorithm::Gouraud => gouraud::render(world, &view, progress)?,
+            Algorithm::Phong => phong::render(world, &view, progress)?,
+            Algorithm::Ray => raytrace::render(world, &view, options, progress)?,
+        };
+        pixels.extend(strip.downsample(n).pixels);
+    }
+    Ok(Frame {
+        width: options.width,
+        height: options.height,
+        pixels,
+    })
 }

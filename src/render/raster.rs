@@ -141,7 +141,6 @@ pub fn draw(
     let triangles = setup(world, view);
     let bins = bin(&triangles, height);
     let mut pixels = vec![world.background; width as usize * height as usize];
-    progress.start(bins.len() as u64);
     pixels
         .par_chunks_mut((BAND_ROWS * width) as usize)
         .zip(bins.par_iter())
@@ -185,7 +184,7 @@ pub fn draw(
                     }
                 }
             }
-            progress.advance(1);
+            progress.advance(band_rows as u64);
             Ok(())
         })?;
     Ok(Frame {

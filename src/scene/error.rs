@@ -7,11 +7,11 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
     /// The file could not be read or written.
-    #[error("{path}: {source}")]
+    #[error("{path}: {error}")]
     Io {
         path: PathBuf,
-        #[source]
-        source: std::io::Error,
+        /// Shown in the message itself (not chained as a source, which would print it twice).
+        error: std::io::Error,
     },
     /// TOML syntax error, unknown key or wrong type.
     #[error("{path}{}: {message}", line.map(|l| format!(":{l}")).unwrap_or_default())]

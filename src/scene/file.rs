@@ -20,9 +20,9 @@ pub fn default_scene() -> Scene {
 
 /// Reads and checks the scene at `path`.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+    let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io {
         path: path.to_path_buf(),
-        source,
+        error,
     })?;
     from_toml_str(&text, path)
 }
@@ -52,9 +52,9 @@ pub fn to_toml_string(scene: &Scene) -> String {
 
 /// Writes `scene` to `path` atomically: readers see the old file or the new one, never a mix.
 pub fn save(scene: &Scene, path: &Path) -> Result<(), SceneError> {
-    write_atomically(path, to_toml_string(scene).as_bytes()).map_err(|source| SceneError::Io {
+    write_atomically(path, to_toml_string(scene).as_bytes()).map_err(|error| SceneError::Io {
         path: path.to_path_buf(),
-        source,
+        error,
     })
 }
 
