@@ -1,12 +1,11 @@
-//! The key map in `docs/keys.md` is the one the help overlay shows.
+//! The key map in `docs/keys.md` and in the README is the one the help overlay shows.
 
 #[test]
 fn docs_key_map_matches_the_help_overlay() {
-    let docs = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/keys.md"))
-        .expect("docs/keys.md exists");
     let table = rastray::tui::keys::markdown();
-    assert!(
-        docs.contains(&table),
-        "docs/keys.md is out of date; its table should be:\n{table}"
-    );
+    for file in ["docs/keys.md", "README.md"] {
+        let path = format!("{}/{file}", env!("CARGO_MANIFEST_DIR"));
+        let docs = std::fs::read_to_string(&path).expect("the file exists");
+        assert!(docs.contains(&table), "the key map in {file} is out of date; it should be:\n{table}");
+    }
 }
