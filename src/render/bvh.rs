@@ -4,7 +4,7 @@
 //! The tree is built by `bvh_build` (binned surface-area heuristic). Traversal visits the nearer
 //! child first and skips any node that starts beyond the nearest hit found so far.
 
-use glam::{Vec3, Vec3A};
+use glam::{Vec3, Vec3A, Vec4};
 
 use super::bvh_build;
 use super::intersect::{Triangle, ray_box};
@@ -14,38 +14,76 @@ use crate::mesh::Mesh;
 /// The deepest tree the builder makes; a node at this depth becomes a leaf whatever its size.
 /// It bounds the traversal stack.
 pub const MAX_TREE_DEPTH: usize = 60;
+/// Stack entries for trees of at most this depth (meshes up to thousands of triangles).
+const SMALL_STACK: usize = 16;
 
-/// One node: a box and either two children or a run of triangles. 32 bytes, two per cache line.
+/// One node: a box and either two children or a run of triangles. 32 bytes, two per cache line;
+/// the links ride in the otherwise unused fourth lanes so the boxes load as whole SIMD registers.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(32))]
 pub struct Node {
-    /// Box minimum corner, world units.
-    pub lo: Vec3,
-    /// Leaf: index of its first triangle. Inner node: offset from this node to its second child
-    /// (the first child always follows its parent).
-    pub start: u32,
-    /// Box maximum corner, world units.
-    pub hi: Vec3,
-    /// Number of triangles; 0 marks an inner node.
-    pub count: u32,
+    /// Box minimum corner (world units) in x, y, z; `start` as bits in w.
+    lo: Vec4,
+    /// Box maximum corner (world units) in x, y, z; `count` as bits in w.
+    hi: Vec4,
 }
 
 impl Node {
+    /// A node over the box [lo, hi]; see [`Node::start`] and [`Node::count`].
+    #[inline]
+    pub fn new(lo: Vec3, hi: Vec3, start: u32, count: u32) -> Node {
+        Node {
+            lo: lo.extend(f32::from_bits(start)),
+            hi: hi.extend(f32::from_bits(count)),
+        }
+    }
+
+    /// Box minimum corner, world units.
+    #[inline]
+    pub fn lo(&self) -> Vec3A {
+        Vec3A::from_vec4(self.lo)
+    }
+
+    /// Box maximum corner, world units.
+    #[inline]
+    pub fn hi(&self) -> Vec3A {
+        Vec3A::from_vec4(self.hi)
+    }
+
+    /// Leaf: index of its first triangle. Inner node: offset from this node to its second child
+    /// (the first child always follows its parent).
+    #[inline]
+    pub fn start(&self) -> u32 {
+        self.lo.w.to_bits()
+    }
+
+    /// Number of triangles; 0 marks an inner node.
+    #[inline]
+    pub fn count(&self) -> u32 {
+        self.hi.w.to_bits()
+    }
+
+    /// Sets [`Node::start`].
+    #[inline]
+    pub fn set_start(&mut self, start: u32) {
+        self.lo.w = f32::from_bits(start);
+    }
+
+    /// Sets [`Node::count`].
+    #[inline]
+    pub fn set_count(&mut self, count: u32) {
+        self.hi.w = f32::from_bits(count);
+    }
+
     /// Whether the node holds triangles rather than children.
     #[inline]
     pub fn is_leaf(&self) -> bool {
-        self.count > 0
+        self.count() > 0
     }
 
     #[inline]
     fn entry(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
-        ray_box(
-            ray,
-            Vec3A::from(self.lo),
-            Vec3A::from(self.hi),
-            t_min,
-            t_max,
-        )
+        ray_box(ray, self.lo(), self.hi(), t_min, t_max)
     }
 }
 
@@ -73,6 +111,8 @@ pub struct Bvh {
     pub triangles: Vec<Triangle>,
     /// The mesh index of each entry of `triangles`.
     pub ids: Vec<u32>,
+    /// Levels of the tree: 1 for a single leaf, 0 when empty; at most [`MAX_TREE_DEPTH`].
+    pub depth: usize,
 }
 
 impl Bvh {
@@ -81,20 +121,20 @@ impl Bvh {
         bvh_build::build(mesh)
     }
 
-    /// Depth of the tree: 1 for a single leaf, 0 when empty.
-    pub fn depth(&self) -> usize {
+    /// Levels of the tree counted from the nodes: 1 for a single leaf, 0 when empty.
+    pub fn measure_depth(nodes: &[Node]) -> usize {
         fn depth_at(nodes: &[Node], i: usize) -> usize {
             let n = &nodes[i];
             if n.is_leaf() {
                 1
             } else {
-                1 + depth_at(nodes, i + 1).max(depth_at(nodes, i + n.start as usize))
+                1 + depth_at(nodes, i + 1).max(depth_at(nodes, i + n.start() as usize))
             }
         }
-        if self.nodes.is_empty() {
+        if nodes.is_empty() {
             0
         } else {
-            depth_at(&self.nodes, 0)
+            depth_at(nodes, 0)
         }
     }
 
@@ -136,6 +176,23 @@ impl Bvh {
         ray: &Ray,
         t_min: f32,
         t_max: &mut f32,
+        visit: impl FnMut(usize, &mut f32) -> bool,
+    ) -> bool {
+        // A stack just deep enough: small meshes do not pay for clearing a large one per ray.
+        if self.depth <= SMALL_STACK {
+            self.traverse_with::<SMALL_STACK>(ray, t_min, t_max, visit)
+        } else {
+            self.traverse_with::<{ MAX_TREE_DEPTH }>(ray, t_min, t_max, visit)
+        }
+    }
+
+    /// [`Bvh::traverse`] with a stack of `N` ≥ depth − 1 entries.
+    #[inline]
+    fn traverse_with<const N: usize>(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: &mut f32,
         mut visit: impl FnMut(usize, &mut f32) -> bool,
     ) -> bool {
         let Some(root) = self.nodes.first() else {
@@ -145,7 +202,7 @@ impl Bvh {
             return false;
         };
         // Pending far children with their entry distances.
-        let mut stack = [(0u32, 0f32); MAX_TREE_DEPTH + 1];
+        let mut stack = [(0u32, 0f32); N];
         let mut top = 0;
         let mut current = (0usize, entry);
         loop {
@@ -153,14 +210,14 @@ impl Bvh {
             if entry <= *t_max {
                 let node = &self.nodes[index];
                 if node.is_leaf() {
-                    let first = node.start as usize;
-                    for k in first..first + node.count as usize {
+                    let first = node.start() as usize;
+                    for k in first..first + node.count() as usize {
                         if visit(k, t_max) {
                             return true;
                         }
                     }
                 } else {
-                    let (a, b) = (index + 1, index + node.start as usize);
+                    let (a, b) = (index + 1, index + node.start() as usize);
                     let ta = self.nodes[a].entry(ray, t_min, *t_max);
                     let tb = self.nodes[b].entry(ray, t_min, *t_max);
                     match (ta, tb) {

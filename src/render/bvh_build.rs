@@ -141,26 +141,43 @@ impl Bins {
 struct Binning {
     origin: Vec3A,
     scale: Vec3A,
+    /// Bins in use, 2..=BINS: small nodes use fewer, which keeps their setup cheap.
+    count: usize,
 }
 
 impl Binning {
-    fn new(centroids: &Aabb) -> Binning {
+    fn new(centroids: &Aabb, prims: usize) -> Binning {
+        let count = prims.clamp(2, BINS);
         let extent = centroids.hi - centroids.lo;
         let scale = Vec3A::select(
             extent.cmpgt(Vec3A::ZERO),
-            Vec3A::splat(BINS as f32) / extent,
+            Vec3A::splat(count as f32) / extent,
             Vec3A::ZERO,
         );
         Binning {
             origin: centroids.lo,
             scale,
+            count,
         }
     }
 
+    /// The prim's bin on each axis.
     #[inline]
     fn bins(&self, p: &Prim) -> [usize; 3] {
         let f = (p.centroid2() - self.origin) * self.scale;
-        f.to_array().map(|x| (x as usize).min(BINS - 1))
+        let top = (self.count - 1) as f32;
+        // f ≥ 0 by construction; clamping first makes the conversion a plain truncation.
+        f.min(Vec3A::splat(top))
+            .as_uvec3()
+            .to_array()
+            .map(|b| b as usize)
+    }
+
+    /// The prim's bin on one axis: the same arithmetic as [`Binning::bins`], one lane of it.
+    #[inline]
+    fn bin(&self, p: &Prim, axis: usize) -> usize {
+        let f = (p.centroid2()[axis] - self.origin[axis]) * self.scale[axis];
+        f.min((self.count - 1) as f32) as u32 as usize
     }
 
     fn fill(&self, prims: &[Prim]) -> Bins {
@@ -194,21 +211,21 @@ struct Split {
 }
 
 /// The cheapest split that leaves both sides non-empty, if any.
-fn best_split(bins: &Bins, parent_area: f32) -> Option<Split> {
+fn best_split(bins: &Bins, used: usize, parent_area: f32) -> Option<Split> {
     let mut best: Option<Split> = None;
     for axis in 0..3 {
         // Sweep from the right: area × count of bins b.. for each b.
         let mut right_cost = [0f32; BINS];
         let mut right_count = [0u32; BINS];
         let (mut acc, mut count) = (Aabb::EMPTY, 0);
-        for b in (1..BINS).rev() {
+        for b in (1..used).rev() {
             acc = acc.union(bins.bounds[axis][b]);
             count += bins.counts[axis][b];
             right_cost[b] = acc.half_area() * count as f32;
             right_count[b] = count;
         }
         let (mut acc, mut count) = (Aabb::EMPTY, 0);
-        for b in 0..BINS - 1 {
+        for b in 0..used - 1 {
             acc = acc.union(bins.bounds[axis][b]);
             count += bins.counts[axis][b];
             if count == 0 || right_count[b + 1] == 0 {
@@ -256,8 +273,7 @@ pub fn build(mesh: &Mesh) -> Bvh {
     if prims.is_empty() {
         return Bvh::default();
     }
-    let mut nodes = Vec::with_capacity(prims.len() / 2);
-    build_node(&mut prims, 0, 0, &mut nodes);
+    let nodes = build_chunks(&mut prims, 0, 0).concat();
     let triangles = prims
         .par_iter()
         .with_min_len(4096)
@@ -268,57 +284,87 @@ pub fn build(mesh: &Mesh) -> Bvh {
         .collect();
     let ids = prims.iter().map(|p| p.index).collect();
     Bvh {
+        depth: Bvh::measure_depth(&nodes),
         nodes,
         triangles,
         ids,
     }
 }
 
-/// Appends the subtree over `prims` (which start at slot `first` of the final order) to `out`.
+/// The subtree over `prims` (which start at slot `first` of the final order), as node runs to
+/// be concatenated: a large node is split in parallel and its children's runs follow its own, so
+/// the nodes are copied once at the end rather than once per level.
+fn build_chunks(prims: &mut [Prim], first: usize, depth: usize) -> Vec<Vec<Node>> {
+    let n = prims.len();
+    if n < PARALLEL_MIN {
+        // Upper bound of a binary tree with n leaves: the run never reallocates.
+        let mut out = Vec::with_capacity(2 * n);
+        build_node(prims, first, depth, &mut out);
+        return vec![out];
+    }
+    let mut me = Vec::new();
+    let Some((node, mid)) = split_node(prims, first, depth, &mut me) else {
+        return vec![me];
+    };
+    let (left, right) = prims.split_at_mut(mid);
+    let (l, r) = rayon::join(
+        || build_chunks(left, first, depth + 1),
+        || build_chunks(right, first + mid, depth + 1),
+    );
+    me[node].set_start(1 + l.iter().map(Vec::len).sum::<usize>() as u32);
+    let mut chunks = vec![me];
+    chunks.extend(l);
+    chunks.extend(r);
+    chunks
+}
+
+/// Appends the subtree over `prims` to `out`, depth first.
 fn build_node(prims: &mut [Prim], first: usize, depth: usize, out: &mut Vec<Node>) {
+    let Some((me, mid)) = split_node(prims, first, depth, out) else {
+        return;
+    };
+    let (left, right) = prims.split_at_mut(mid);
+    build_node(left, first, depth + 1, out);
+    let offset = (out.len() - me) as u32;
+    out[me].set_start(offset);
+    build_node(right, first + mid, depth + 1, out);
+}
+
+/// Pushes the node over `prims` to `out`. A leaf returns `None`; an inner node partitions
+/// `prims` and returns its index in `out` and the size of the left part (its `start` is set by
+/// the caller once the left subtree is built).
+fn split_node(
+    prims: &mut [Prim],
+    first: usize,
+    depth: usize,
+    out: &mut Vec<Node>,
+) -> Option<(usize, usize)> {
     let extent = Extent::of(prims);
     let me = out.len();
-    out.push(Node {
-        lo: Vec3::from(extent.bounds.lo),
-        start: first as u32,
-        hi: Vec3::from(extent.bounds.hi),
-        count: prims.len() as u32,
-    });
     let n = prims.len();
+    out.push(Node::new(
+        Vec3::from(extent.bounds.lo),
+        Vec3::from(extent.bounds.hi),
+        first as u32,
+        n as u32,
+    ));
     if n <= 2 || depth + 1 >= MAX_TREE_DEPTH {
-        return;
+        return None;
     }
-    let binning = Binning::new(&extent.centroids);
-    let split = best_split(&binning.fill(prims), extent.bounds.half_area());
+    let binning = Binning::new(&extent.centroids, n);
+    let split = best_split(
+        &binning.fill(prims),
+        binning.count,
+        extent.bounds.half_area(),
+    );
     let mid = match split {
         Some(s) if n > MAX_LEAF || s.cost < n as f32 => {
-            partition(prims, |p| binning.bins(p)[s.axis] <= s.bin)
+            partition(prims, |p| binning.bin(p, s.axis) <= s.bin)
         }
         // All centroids coincide: any halving is as good as another.
         None if n > MAX_LEAF => n / 2,
-        _ => return,
+        _ => return None,
     };
-    out[me].count = 0;
-    let (left, right) = prims.split_at_mut(mid);
-    if n >= PARALLEL_MIN {
-        let (l, r) = rayon::join(
-            || subtree(left, first, depth + 1),
-            || subtree(right, first + mid, depth + 1),
-        );
-        out[me].start = 1 + l.len() as u32;
-        out.extend_from_slice(&l);
-        out.extend_from_slice(&r);
-    } else {
-        build_node(left, first, depth + 1, out);
-        out[me].start = (out.len() - me) as u32;
-        build_node(right, first + mid, depth + 1, out);
-    }
-}
-
-/// The subtree over `prims` as its own node list (child links are relative, so it can be
-/// appended anywhere).
-fn subtree(prims: &mut [Prim], first: usize, depth: usize) -> Vec<Node> {
-    let mut out = Vec::with_capacity(prims.len() / 2);
-    build_node(prims, first, depth, &mut out);
-    out
+    out[me].set_count(0);
+    Some((me, mid))
 }
