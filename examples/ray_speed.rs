@@ -134,10 +134,10 @@ fn build(big: &Scene) {
     let (build, accel) = best(|| SceneAccel::build(&world));
     let bvh = &accel.objects[0].bvh;
     println!(
-        "BVH build, {} triangles: {} ({} nodes, depth {})",
+        "BVH build, {} triangles: {} ({} inner nodes, depth {})",
         world.triangle_count(),
         build.ms(),
-        bvh.nodes.len(),
+        bvh.inner.len(),
         bvh.depth
     );
 }

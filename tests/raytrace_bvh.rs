@@ -5,7 +5,7 @@
 use glam::{Vec3, Vec3A};
 use proptest::prelude::*;
 use rastray::mesh::{Mesh, icosahedron};
-use rastray::render::bvh::{Bvh, Node};
+use rastray::render::bvh::{Bvh, MAX_TREE_DEPTH, Node};
 use rastray::render::intersect::Triangle;
 use rastray::render::ray::Ray;
 
@@ -83,9 +83,9 @@ proptest! {
     }
 }
 
-/// Checks node `i`'s subtree; returns the leaf triangle slots it covers.
-fn check_subtree(bvh: &Bvh, mesh: &Mesh, i: usize, seen: &mut [u32]) {
-    let node: &Node = &bvh.nodes[i];
+/// Checks `node`'s subtree: children inside their parent, triangles inside their leaf; counts
+/// how often each triangle slot is reached.
+fn check_subtree(bvh: &Bvh, mesh: &Mesh, node: &Node, seen: &mut [u32]) {
     let (lo, hi) = (node.lo(), node.hi());
     let inside = |p: Vec3A| p.cmpge(lo).all() && p.cmple(hi).all();
     if node.is_leaf() {
@@ -94,15 +94,14 @@ fn check_subtree(bvh: &Bvh, mesh: &Mesh, i: usize, seen: &mut [u32]) {
         for (k, id) in slots.clone().zip(&bvh.ids[slots]) {
             seen[k] += 1;
             for v in mesh.corners(*id as usize) {
-                assert!(inside(v.into()), "triangle slot {k} pokes out of leaf {i}");
+                assert!(inside(v.into()), "triangle slot {k} pokes out of its leaf");
             }
         }
     } else {
-        for child in [i + 1, i + node.start() as usize] {
-            let c = &bvh.nodes[child];
+        for child in &bvh.inner[node.start() as usize].children {
             assert!(
-                inside(c.lo()) && inside(c.hi()),
-                "child {child} outside node {i}"
+                inside(child.lo()) && inside(child.hi()),
+                "child outside its parent"
             );
             check_subtree(bvh, mesh, child, seen);
         }
@@ -120,7 +119,7 @@ fn every_triangle_sits_in_exactly_one_leaf() {
     };
     let bvh = Bvh::build(&mesh);
     let mut seen = vec![0u32; bvh.triangles.len()];
-    check_subtree(&bvh, &mesh, 0, &mut seen);
+    check_subtree(&bvh, &mesh, &bvh.root.expect("a root"), &mut seen);
     assert!(
         seen.iter().all(|&n| n == 1),
         "a slot is in zero or two leaves"
@@ -128,11 +127,12 @@ fn every_triangle_sits_in_exactly_one_leaf() {
     let mut ids = bvh.ids.clone();
     ids.sort_unstable();
     assert!(ids.iter().copied().eq(0..mesh.triangle_count() as u32));
-    assert_eq!(bvh.depth, Bvh::measure_depth(&bvh.nodes));
+    assert_eq!(bvh.depth, bvh.measure_depth());
+    assert!(bvh.depth <= MAX_TREE_DEPTH);
     println!(
-        "{} triangles: {} nodes, depth {}",
+        "{} triangles: {} inner nodes, depth {}",
         ids.len(),
-        bvh.nodes.len(),
+        bvh.inner.len(),
         bvh.depth
     );
 }

@@ -1,5 +1,7 @@
-//! A bounding volume hierarchy over one mesh's triangles: flattened nodes in depth-first order
-//! and the triangles copied in leaf order, so a leaf's triangles sit side by side in memory.
+//! A bounding volume hierarchy over one mesh's triangles: inner nodes in depth-first order, each
+//! holding the boxes of both its children in one 64-byte cache line (a visit tests both boxes
+//! with one memory access), and the triangles copied in leaf order, so a leaf's triangles sit
+//! side by side in memory.
 //!
 //! The tree is built by `bvh_build` (binned surface-area heuristic). Traversal visits the nearer
 //! child first and skips any node that starts beyond the nearest hit found so far.
@@ -17,8 +19,8 @@ pub const MAX_TREE_DEPTH: usize = 60;
 /// Stack entries for trees of at most this depth (meshes up to thousands of triangles).
 const SMALL_STACK: usize = 16;
 
-/// One node: a box and either two children or a run of triangles. 32 bytes, two per cache line;
-/// the links ride in the otherwise unused fourth lanes so the boxes load as whole SIMD registers.
+/// A box and what it holds: a run of triangles (a leaf) or an inner node. 32 bytes; the link
+/// rides in the otherwise unused fourth lanes so the box loads as whole SIMD registers.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(32))]
 pub struct Node {
@@ -26,6 +28,13 @@ pub struct Node {
     lo: Vec4,
     /// Box maximum corner (world units) in x, y, z; `count` as bits in w.
     hi: Vec4,
+}
+
+/// An inner node: its two children, boxes included. One cache line.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(64))]
+pub struct Inner {
+    pub children: [Node; 2],
 }
 
 impl Node {
@@ -50,8 +59,9 @@ impl Node {
         Vec3A::from_vec4(self.hi)
     }
 
-    /// Leaf: index of its first triangle. Inner node: offset from this node to its second child
-    /// (the first child always follows its parent).
+    /// Leaf: index of its first triangle. Inner node: its index in [`Bvh::inner`] (while
+    /// building: the offset from this node to its second child in the depth-first node list,
+    /// the first child following its parent).
     #[inline]
     pub fn start(&self) -> u32 {
         self.lo.w.to_bits()
@@ -105,8 +115,10 @@ pub struct BvhHit {
 /// A BVH over one mesh. Invariant: every triangle of the mesh is in exactly one leaf.
 #[derive(Debug, Clone, Default)]
 pub struct Bvh {
-    /// Nodes in depth-first order, the root first; empty for a mesh without triangles.
-    pub nodes: Vec<Node>,
+    /// The root's box and link; `None` for a mesh without triangles.
+    pub root: Option<Node>,
+    /// Inner nodes in depth-first order.
+    pub inner: Vec<Inner>,
     /// Triangles in leaf order.
     pub triangles: Vec<Triangle>,
     /// The mesh index of each entry of `triangles`.
@@ -121,21 +133,47 @@ impl Bvh {
         bvh_build::build(mesh)
     }
 
-    /// Levels of the tree counted from the nodes: 1 for a single leaf, 0 when empty.
-    pub fn measure_depth(nodes: &[Node]) -> usize {
-        fn depth_at(nodes: &[Node], i: usize) -> usize {
-            let n = &nodes[i];
+    /// Packs a depth-first node list (inner nodes linking to their second child by offset) into
+    /// the root and [`Inner`] nodes.
+    pub(super) fn pack(flat: &[Node]) -> (Option<Node>, Vec<Inner>) {
+        let mut index = vec![u32::MAX; flat.len()];
+        let mut next = 0;
+        for (i, n) in flat.iter().enumerate() {
+            if !n.is_leaf() {
+                index[i] = next;
+                next += 1;
+            }
+        }
+        let link = |i: usize| {
+            let n = flat[i];
+            if n.is_leaf() {
+                n
+            } else {
+                Node::new(Vec3::from(n.lo()), Vec3::from(n.hi()), index[i], 0)
+            }
+        };
+        let inner = flat
+            .iter()
+            .enumerate()
+            .filter(|(_, n)| !n.is_leaf())
+            .map(|(i, n)| Inner {
+                children: [link(i + 1), link(i + n.start() as usize)],
+            })
+            .collect();
+        ((!flat.is_empty()).then(|| link(0)), inner)
+    }
+
+    /// Levels of the tree walked from the root: 1 for a single leaf, 0 when empty.
+    pub fn measure_depth(&self) -> usize {
+        fn depth_at(bvh: &Bvh, n: &Node) -> usize {
             if n.is_leaf() {
                 1
             } else {
-                1 + depth_at(nodes, i + 1).max(depth_at(nodes, i + n.start() as usize))
+                let [a, b] = &bvh.inner[n.start() as usize].children;
+                1 + depth_at(bvh, a).max(depth_at(bvh, b))
             }
         }
-        if nodes.is_empty() {
-            0
-        } else {
-            depth_at(nodes, 0)
-        }
+        self.root.as_ref().map_or(0, |r| depth_at(self, r))
     }
 
     /// The nearest triangle hit with t in (t_min, t_max).
@@ -195,31 +233,30 @@ impl Bvh {
         t_max: &mut f32,
         mut visit: impl FnMut(usize, &mut f32) -> bool,
     ) -> bool {
-        let Some(root) = self.nodes.first() else {
+        let Some(root) = &self.root else {
             return false;
         };
         let Some(entry) = root.entry(ray, t_min, *t_max) else {
             return false;
         };
-        // Pending far children with their entry distances.
-        let mut stack = [(0u32, 0f32); N];
+        // Pending far children: link (start, count) and entry distance; their boxes are tested.
+        let mut stack = [(0u32, 0u32, 0f32); N];
         let mut top = 0;
-        let mut current = (0usize, entry);
+        let mut current = (root.start(), root.count(), entry);
         loop {
-            let (index, entry) = current;
+            let (start, count, entry) = current;
             if entry <= *t_max {
-                let node = &self.nodes[index];
-                if node.is_leaf() {
-                    let first = node.start() as usize;
-                    for k in first..first + node.count() as usize {
+                if count > 0 {
+                    let first = start as usize;
+                    for k in first..first + count as usize {
                         if visit(k, t_max) {
                             return true;
                         }
                     }
                 } else {
-                    let (a, b) = (index + 1, index + node.start() as usize);
-                    let ta = self.nodes[a].entry(ray, t_min, *t_max);
-                    let tb = self.nodes[b].entry(ray, t_min, *t_max);
+                    let [a, b] = &self.inner[start as usize].children;
+                    let ta = a.entry(ray, t_min, *t_max);
+                    let tb = b.entry(ray, t_min, *t_max);
                     match (ta, tb) {
                         (Some(ta), Some(tb)) => {
                             let (near, far) = if ta <= tb {
@@ -227,17 +264,17 @@ impl Bvh {
                             } else {
                                 ((b, tb), (a, ta))
                             };
-                            stack[top] = (far.0 as u32, far.1);
+                            stack[top] = (far.0.start(), far.0.count(), far.1);
                             top += 1;
-                            current = near;
+                            current = (near.0.start(), near.0.count(), near.1);
                             continue;
                         }
                         (Some(ta), None) => {
-                            current = (a, ta);
+                            current = (a.start(), a.count(), ta);
                             continue;
                         }
                         (None, Some(tb)) => {
-                            current = (b, tb);
+                            current = (b.start(), b.count(), tb);
                             continue;
                         }
                         (None, None) => {}
@@ -248,7 +285,7 @@ impl Bvh {
                 return false;
             }
             top -= 1;
-            current = (stack[top].0 as usize, stack[top].1);
+            current = stack[top];
         }
     }
 }

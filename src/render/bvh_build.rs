@@ -333,12 +333,16 @@ pub fn build(mesh: &Mesh) -> Bvh {
         })
         .collect();
     let ids = prims.iter().map(Prim::index).collect();
-    Bvh {
-        depth: Bvh::measure_depth(&nodes),
-        nodes,
+    let (root, inner) = Bvh::pack(&nodes);
+    let mut bvh = Bvh {
+        root,
+        inner,
         triangles,
         ids,
-    }
+        depth: 0,
+    };
+    bvh.depth = bvh.measure_depth();
+    bvh
 }
 
 /// The subtree over `prims` (which start at slot `first` of the final order), as node runs to
