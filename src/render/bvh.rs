@@ -1,10 +1,12 @@
-//! A bounding volume hierarchy over one mesh's triangles: flattened nodes in depth-first order
-//! and the triangles copied in leaf order, so a leaf's triangles sit side by side in memory.
+//! A bounding volume hierarchy over one mesh's triangles: inner nodes in depth-first order, each
+//! holding the boxes of both its children in one 64-byte cache line (a visit tests both boxes
+//! with one memory access), and the triangles copied in leaf order, so a leaf's triangles sit
+//! side by side in memory.
 //!
 //! The tree is built by `bvh_build` (binned surface-area heuristic). Traversal visits the nearer
 //! child first and skips any node that starts beyond the nearest hit found so far.
 
-use glam::{Vec3, Vec3A};
+use glam::{Vec3, Vec3A, Vec4};
 
 use super::bvh_build;
 use super::intersect::{Triangle, ray_box};
@@ -14,38 +16,84 @@ use crate::mesh::Mesh;
 /// The deepest tree the builder makes; a node at this depth becomes a leaf whatever its size.
 /// It bounds the traversal stack.
 pub const MAX_TREE_DEPTH: usize = 60;
+/// Stack entries for trees of at most this depth (meshes up to thousands of triangles).
+const SMALL_STACK: usize = 16;
 
-/// One node: a box and either two children or a run of triangles. 32 bytes, two per cache line.
+/// A box and what it holds: a run of triangles (a leaf) or an inner node. 32 bytes; the link
+/// rides in the otherwise unused fourth lanes so the box loads as whole SIMD registers.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(32))]
 pub struct Node {
-    /// Box minimum corner, world units.
-    pub lo: Vec3,
-    /// Leaf: index of its first triangle. Inner node: offset from this node to its second child
-    /// (the first child always follows its parent).
-    pub start: u32,
-    /// Box maximum corner, world units.
-    pub hi: Vec3,
-    /// Number of triangles; 0 marks an inner node.
-    pub count: u32,
+    /// Box minimum corner (world units) in x, y, z; `start` as bits in w.
+    lo: Vec4,
+    /// Box maximum corner (world units) in x, y, z; `count` as bits in w.
+    hi: Vec4,
+}
+
+/// An inner node: its two children, boxes included. One cache line.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(64))]
+pub struct Inner {
+    pub children: [Node; 2],
 }
 
 impl Node {
+    /// A node over the box [lo, hi]; see [`Node::start`] and [`Node::count`].
+    #[inline]
+    pub fn new(lo: Vec3, hi: Vec3, start: u32, count: u32) -> Node {
+        Node {
+            lo: lo.extend(f32::from_bits(start)),
+            hi: hi.extend(f32::from_bits(count)),
+        }
+    }
+
+    /// Box minimum corner, world units.
+    #[inline]
+    pub fn lo(&self) -> Vec3A {
+        Vec3A::from_vec4(self.lo)
+    }
+
+    /// Box maximum corner, world units.
+    #[inline]
+    pub fn hi(&self) -> Vec3A {
+        Vec3A::from_vec4(self.hi)
+    }
+
+    /// Leaf: index of its first triangle. Inner node: its index in [`Bvh::inner`] (while
+    /// building: the offset from this node to its second child in the depth-first node list,
+    /// the first child following its parent).
+    #[inline]
+    pub fn start(&self) -> u32 {
+        self.lo.w.to_bits()
+    }
+
+    /// Number of triangles; 0 marks an inner node.
+    #[inline]
+    pub fn count(&self) -> u32 {
+        self.hi.w.to_bits()
+    }
+
+    /// Sets [`Node::start`].
+    #[inline]
+    pub fn set_start(&mut self, start: u32) {
+        self.lo.w = f32::from_bits(start);
+    }
+
+    /// Sets [`Node::count`].
+    #[inline]
+    pub fn set_count(&mut self, count: u32) {
+        self.hi.w = f32::from_bits(count);
+    }
+
     /// Whether the node holds triangles rather than children.
     #[inline]
     pub fn is_leaf(&self) -> bool {
-        self.count > 0
+        self.count() > 0
     }
 
     #[inline]
     fn entry(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<f32> {
-        ray_box(
-            ray,
-            Vec3A::from(self.lo),
-            Vec3A::from(self.hi),
-            t_min,
-            t_max,
-        )
+        ray_box(ray, self.lo(), self.hi(), t_min, t_max)
     }
 }
 
@@ -67,12 +115,16 @@ pub struct BvhHit {
 /// A BVH over one mesh. Invariant: every triangle of the mesh is in exactly one leaf.
 #[derive(Debug, Clone, Default)]
 pub struct Bvh {
-    /// Nodes in depth-first order, the root first; empty for a mesh without triangles.
-    pub nodes: Vec<Node>,
+    /// The root's box and link; `None` for a mesh without triangles.
+    pub root: Option<Node>,
+    /// Inner nodes in depth-first order.
+    pub inner: Vec<Inner>,
     /// Triangles in leaf order.
     pub triangles: Vec<Triangle>,
     /// The mesh index of each entry of `triangles`.
     pub ids: Vec<u32>,
+    /// Levels of the tree: 1 for a single leaf, 0 when empty; at most [`MAX_TREE_DEPTH`].
+    pub depth: usize,
 }
 
 impl Bvh {
@@ -81,21 +133,47 @@ impl Bvh {
         bvh_build::build(mesh)
     }
 
-    /// Depth of the tree: 1 for a single leaf, 0 when empty.
-    pub fn depth(&self) -> usize {
-        fn depth_at(nodes: &[Node], i: usize) -> usize {
-            let n = &nodes[i];
+    /// Packs a depth-first node list (inner nodes linking to their second child by offset) into
+    /// the root and [`Inner`] nodes.
+    pub(super) fn pack(flat: &[Node]) -> (Option<Node>, Vec<Inner>) {
+        let mut index = vec![u32::MAX; flat.len()];
+        let mut next = 0;
+        for (i, n) in flat.iter().enumerate() {
+            if !n.is_leaf() {
+                index[i] = next;
+                next += 1;
+            }
+        }
+        let link = |i: usize| {
+            let n = flat[i];
+            if n.is_leaf() {
+                n
+            } else {
+                Node::new(Vec3::from(n.lo()), Vec3::from(n.hi()), index[i], 0)
+            }
+        };
+        let inner = flat
+            .iter()
+            .enumerate()
+            .filter(|(_, n)| !n.is_leaf())
+            .map(|(i, n)| Inner {
+                children: [link(i + 1), link(i + n.start() as usize)],
+            })
+            .collect();
+        ((!flat.is_empty()).then(|| link(0)), inner)
+    }
+
+    /// Levels of the tree walked from the root: 1 for a single leaf, 0 when empty.
+    pub fn measure_depth(&self) -> usize {
+        fn depth_at(bvh: &Bvh, n: &Node) -> usize {
             if n.is_leaf() {
                 1
             } else {
-                1 + depth_at(nodes, i + 1).max(depth_at(nodes, i + n.start as usize))
+                let [a, b] = &bvh.inner[n.start() as usize].children;
+                1 + depth_at(bvh, a).max(depth_at(bvh, b))
             }
         }
-        if self.nodes.is_empty() {
-            0
-        } else {
-            depth_at(&self.nodes, 0)
-        }
+        self.root.as_ref().map_or(0, |r| depth_at(self, r))
     }
 
     /// The nearest triangle hit with t in (t_min, t_max).
@@ -136,33 +214,49 @@ impl Bvh {
         ray: &Ray,
         t_min: f32,
         t_max: &mut f32,
+        visit: impl FnMut(usize, &mut f32) -> bool,
+    ) -> bool {
+        // A stack just deep enough: small meshes do not pay for clearing a large one per ray.
+        if self.depth <= SMALL_STACK {
+            self.traverse_with::<SMALL_STACK>(ray, t_min, t_max, visit)
+        } else {
+            self.traverse_with::<{ MAX_TREE_DEPTH }>(ray, t_min, t_max, visit)
+        }
+    }
+
+    /// [`Bvh::traverse`] with a stack of `N` ≥ depth − 1 entries.
+    #[inline]
+    fn traverse_with<const N: usize>(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: &mut f32,
         mut visit: impl FnMut(usize, &mut f32) -> bool,
     ) -> bool {
-        let Some(root) = self.nodes.first() else {
+        let Some(root) = &self.root else {
             return false;
         };
         let Some(entry) = root.entry(ray, t_min, *t_max) else {
             return false;
         };
-        // Pending far children with their entry distances.
-        let mut stack = [(0u32, 0f32); MAX_TREE_DEPTH + 1];
+        // Pending far children: link (start, count) and entry distance; their boxes are tested.
+        let mut stack = [(0u32, 0u32, 0f32); N];
         let mut top = 0;
-        let mut current = (0usize, entry);
+        let mut current = (root.start(), root.count(), entry);
         loop {
-            let (index, entry) = current;
+            let (start, count, entry) = current;
             if entry <= *t_max {
-                let node = &self.nodes[index];
-                if node.is_leaf() {
-                    let first = node.start as usize;
-                    for k in first..first + node.count as usize {
+                if count > 0 {
+                    let first = start as usize;
+                    for k in first..first + count as usize {
                         if visit(k, t_max) {
                             return true;
                         }
                     }
                 } else {
-                    let (a, b) = (index + 1, index + node.start as usize);
-                    let ta = self.nodes[a].entry(ray, t_min, *t_max);
-                    let tb = self.nodes[b].entry(ray, t_min, *t_max);
+                    let [a, b] = &self.inner[start as usize].children;
+                    let ta = a.entry(ray, t_min, *t_max);
+                    let tb = b.entry(ray, t_min, *t_max);
                     match (ta, tb) {
                         (Some(ta), Some(tb)) => {
                             let (near, far) = if ta <= tb {
@@ -170,17 +264,17 @@ impl Bvh {
                             } else {
                                 ((b, tb), (a, ta))
                             };
-                            stack[top] = (far.0 as u32, far.1);
+                            stack[top] = (far.0.start(), far.0.count(), far.1);
                             top += 1;
-                            current = near;
+                            current = (near.0.start(), near.0.count(), near.1);
                             continue;
                         }
                         (Some(ta), None) => {
-                            current = (a, ta);
+                            current = (a.start(), a.count(), ta);
                             continue;
                         }
                         (None, Some(tb)) => {
-                            current = (b, tb);
+                            current = (b.start(), b.count(), tb);
                             continue;
                         }
                         (None, None) => {}
@@ -191,7 +285,7 @@ impl Bvh {
                 return false;
             }
             top -= 1;
-            current = (stack[top].0 as usize, stack[top].1);
+            current = stack[top];
         }
     }
 }

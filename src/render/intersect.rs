@@ -97,10 +97,23 @@ pub fn ray_sphere(ray: &Ray, center: Vec3, radius: f32) -> Option<(f32, f32)> {
     Some((t0.min(t1), t0.max(t1)))
 }
 
-/// Whether the segment (t_min, t_max) of `ray` touches the sphere.
+/// Whether the segment [t_min, t_max] of `ray` (unit direction) touches the ball: the point of
+/// the segment nearest the centre lies within `radius`. No root or division, so it is a cheap
+/// first cull.
 #[inline]
 pub fn segment_meets_sphere(ray: &Ray, center: Vec3, radius: f32, t_min: f32, t_max: f32) -> bool {
-    ray_sphere(ray, center, radius).is_some_and(|(near, far)| far >= t_min && near <= t_max)
+    let to_center = Vec3A::from(center) - ray.origin;
+    let along = to_center.dot(ray.dir);
+    let t = if along < t_min {
+        t_min
+    } else if along > t_max {
+        t_max
+    } else {
+        along
+    };
+    // t is finite whenever t_min is: an infinite t_max is never below `along`.
+    let nearest = ray.origin + ray.dir * t;
+    (Vec3A::from(center) - nearest).length_squared() <= radius * radius
 }
 
 /// The entry distance of `ray` into the box [lo, hi] clipped to [t_min, t_max], or `None`
@@ -109,7 +122,11 @@ pub fn segment_meets_sphere(ray: &Ray, center: Vec3, radius: f32, t_min: f32, t_
 pub fn ray_box(ray: &Ray, lo: Vec3A, hi: Vec3A, t_min: f32, t_max: f32) -> Option<f32> {
     let t1 = (lo - ray.origin) * ray.inv_dir;
     let t2 = (hi - ray.origin) * ray.inv_dir;
-    let near = t1.min(t2).max_element().max(t_min);
-    let far = t1.max(t2).min_element().min(t_max);
+    // Plain comparisons rather than f32::max/min: no NaN can arise (inv_dir is finite), and
+    // they compile to single instructions in this, the hottest, loop.
+    let near = t1.min(t2).max_element();
+    let far = t1.max(t2).min_element();
+    let near = if near > t_min { near } else { t_min };
+    let far = if far < t_max { far } else { t_max };
     (near <= far).then_some(near)
 }

@@ -18,6 +18,10 @@ use super::shading::Lighting;
 use super::zbuffer::lighting;
 use crate::world::World;
 
+/// Deepest reflection recursion traced, whatever the options ask: the limit scene files
+/// already have, which also bounds the recursion's stack use.
+pub const MAX_REFLECTION_DEPTH: u32 = 16;
+
 /// How many rays of each kind a render cast.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct RayStats {
@@ -85,7 +89,10 @@ pub fn render_with_stats(
         accel,
         lighting: lighting(world),
         shadows: options.shadows,
-        max_depth: options.max_depth.unwrap_or(world.max_depth),
+        max_depth: options
+            .max_depth
+            .unwrap_or(world.max_depth)
+            .min(MAX_REFLECTION_DEPTH),
     };
     let width = view.width as usize;
     let mut pixels = vec![Vec3::ZERO; width * view.height as usize];

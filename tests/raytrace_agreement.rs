@@ -1,0 +1,69 @@
+//! With shadows and reflections off, the ray tracer and the Phong Z-buffer compute the same
+//! thing: the shared lighting function with the interpolated normal at the surface seen through
+//! each pixel centre. Their 8-bit sRGB images must agree to a PSNR of at least 40 dB.
+
+use std::path::Path;
+
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, render};
+use rastray::{Scene, World};
+
+/// Least acceptable peak signal-to-noise ratio, dB.
+const MIN_PSNR: f64 = 40.0;
+
+fn load(path: &str) -> (Scene, World) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
+    let scene = rastray::scene::load(&path).expect("scene loads");
+    let world = World::build(&scene, path.parent().expect("a directory")).expect("world");
+    (scene, world)
+}
+
+fn frame(scene: &Scene, world: &World, algorithm: Algorithm) -> Frame {
+    let mut options = RenderOptions::new(algorithm, 480, 270);
+    options.shadows = false;
+    options.max_depth = Some(0);
+    render(world, &scene.camera, &options, &Progress::new()).expect("render")
+}
+
+/// PSNR in dB of two 8-bit images of the same size (infinite when identical).
+fn psnr(a: &[u8], b: &[u8]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let mse = a
+        .iter()
+        .zip(b)
+        .map(|(&x, &y)| (x as f64 - y as f64).powi(2))
+        .sum::<f64>()
+        / a.len() as f64;
+    10.0 * (255.0f64 * 255.0 / mse).log10()
+}
+
+/// Pixels where exactly one of the two images shows the background: coverage disagreements.
+fn coverage_mismatches(a: &Frame, b: &Frame, background: glam::Vec3) -> usize {
+    a.pixels
+        .iter()
+        .zip(&b.pixels)
+        .filter(|(p, q)| (**p == background) != (**q == background))
+        .count()
+}
+
+fn check(path: &str) {
+    let (scene, world) = load(path);
+    let phong = frame(&scene, &world, Algorithm::Phong);
+    let ray = frame(&scene, &world, Algorithm::Ray);
+    let db = psnr(&phong.to_srgb8(), &ray.to_srgb8());
+    let misses = coverage_mismatches(&phong, &ray, world.background);
+    println!(
+        "{path}: ray tracer vs Phong PSNR {db:.2} dB; {misses} of {} pixels differ in coverage",
+        phong.pixels.len()
+    );
+    assert!(db >= MIN_PSNR, "{path}: PSNR {db:.2} dB < {MIN_PSNR} dB");
+}
+
+#[test]
+fn default_scene_agrees_with_phong() {
+    check("scenes/default.toml");
+}
+
+#[test]
+fn teapot_obj_scene_agrees_with_phong() {
+    check("scenes/teapot.toml");
+}
