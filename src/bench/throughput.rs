@@ -9,6 +9,7 @@ use glam::Vec3;
 use super::area::total_face_area;
 use super::runner::{summarize, time_render};
 use crate::mesh::load_obj;
+use crate::render::accel::SceneAccel;
 use crate::render::{
     Algorithm, Cancelled, Frame, Progress, RenderError, RenderOptions, Size, View, raytrace,
 };
@@ -28,23 +29,21 @@ pub struct RayStats {
     pub bvh_build: Duration,
 }
 
-/// Whether [`render_ray_with_stats`] counts rays itself (false) or estimates them from the pixel
-/// count because the ray tracer does not report its counts (true).
-pub const RAY_COUNTS_ESTIMATED: bool = true;
-
-/// Renders with the ray tracer and returns its ray counts. The ray tracer does not report counts
-/// yet: this estimates one primary ray per pixel, no shadow or reflection rays and no BVH build
-/// time. The one place to change when it does.
+/// Renders with the ray tracer, building its BVH first, and returns the ray counts and the
+/// build time.
 pub fn render_ray_with_stats(
     world: &World,
     view: &View,
     options: &RenderOptions,
     progress: &Progress,
 ) -> Result<(Frame, RayStats), Cancelled> {
-    let frame = raytrace::render(world, view, options, progress)?;
+    let accel = SceneAccel::build(world);
+    let (frame, rays) = raytrace::render_with_stats(&accel, world, view, options, progress)?;
     let stats = RayStats {
-        primary: view.width as u64 * view.height as u64,
-        ..RayStats::default()
+        primary: rays.primary,
+        shadow: rays.shadow,
+        reflection: rays.reflection,
+        bvh_build: accel.build_time,
     };
     Ok((frame, stats))
 }

@@ -8,7 +8,7 @@ use clap::{Args, Subcommand};
 use indicatif::ProgressBar;
 use rastray::World;
 use rastray::bench::report::{CSV_FILE, REPORT_FILE, number};
-use rastray::bench::throughput::{RAY_COUNTS_ESTIMATED, measure, obj_scene};
+use rastray::bench::throughput::{measure, obj_scene};
 use rastray::bench::{BenchConfig, plot, report, run};
 use rastray::render::Size;
 
@@ -177,12 +177,6 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
         println!(
             "         {kind:10} {count:>12} rays  {:>8} Mrays/s",
             number(ray.mrays_per_s(count))
-        );
-    }
-    if RAY_COUNTS_ESTIMATED {
-        println!(
-            "note: the ray tracer does not report its ray counts yet: primary rays are estimated as \
-             one per pixel, shadow and reflection rays and the BVH build time are not measured"
         );
     }
     Ok(())

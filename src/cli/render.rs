@@ -25,8 +25,8 @@ pub struct RenderArgs {
     /// Supersampling: N×N samples per pixel (1 to 8).
     #[arg(long, default_value_t = 1)]
     pub samples: u32,
-    /// Ray tracer: reflection depth (default: the scene's max_depth).
-    #[arg(long)]
+    /// Ray tracer: reflection depth, 0 to 16 (default: the scene's max_depth).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=rastray::scene::MAX_DEPTH as i64))]
     pub max_depth: Option<u32>,
     /// Ray tracer: cast no shadow rays.
     #[arg(long)]

@@ -55,13 +55,18 @@ pub fn render(
     let strip_rows = (STRIP_SAMPLES / (full.width as u64 * (n * n) as u64))
         .clamp(1, options.height as u64) as u32;
     let mut pixels = Vec::with_capacity(options.width as usize * options.height as usize);
+    // The ray tracer's acceleration structure is built once for all strips.
+    let accel = (options.algorithm == Algorithm::Ray).then(|| accel::SceneAccel::build(world));
     for first in (0..options.height).step_by(strip_rows as usize) {
         let rows = strip_rows.min(options.height - first);
         let view = full.rows(first * n, rows * n);
         let strip = match options.algorithm {
             Algorithm::Gouraud => gouraud::render(world, &view, progress)?,
             Algorithm::Phong => phong::render(world, &view, progress)?,
-            Algorithm::Ray => raytrace::render(world, &view, options, progress)?,
+            Algorithm::Ray => {
+                let accel = accel.as_ref().expect("built above for the ray tracer");
+                raytrace::render_with(accel, world, &view, options, progress)?
+            }
         };
         pixels.extend(strip.downsample(n).pixels);
     }

@@ -20,7 +20,7 @@ use crate::world::World;
 
 /// Deepest reflection recursion traced, whatever the options ask: the limit scene files
 /// already have, which also bounds the recursion's stack use.
-pub const MAX_REFLECTION_DEPTH: u32 = 16;
+pub const MAX_REFLECTION_DEPTH: u32 = crate::scene::MAX_DEPTH;
 
 /// How many rays of each kind a render cast.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -96,7 +96,6 @@ pub fn render_with_stats(
     };
     let width = view.width as usize;
     let mut pixels = vec![Vec3::ZERO; width * view.height as usize];
-    progress.start(view.height as u64);
     let stats = pixels
         .par_chunks_mut(width)
         .enumerate()

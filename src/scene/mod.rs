@@ -12,4 +12,4 @@ pub use file::{DEFAULT_SCENE_TOML, default_scene, from_toml_str, load, save, to_
 pub use material::Material;
 pub use model::{Camera, Falloff, Light, Scene};
 pub use object::{Object, Shape, ShapeKind};
-pub use validate::{FieldPath, Invalid, validate};
+pub use validate::{FieldPath, Invalid, MAX_DEPTH, validate};
