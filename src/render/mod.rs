@@ -68,7 +68,11 @@ pub fn render(
                 raytrace::render_with(accel, world, &view, options, progress)?
             }
         };
-        pixels.extend(strip.downsample(n).pixels);
+        let strip = strip.downsample(n);
+        if rows == options.height {
+            return Ok(strip); // One strip is the whole image: no copy.
+        }
+        pixels.extend(strip.pixels);
     }
     Ok(Frame {
         width: options.width,
