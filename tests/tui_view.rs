@@ -141,7 +141,10 @@ fn a_tiny_terminal_says_so_without_panicking() {
             .iter()
             .map(|c| c.symbol())
             .collect();
-        assert!(text.contains("termin"), "{w}x{h}: {text:?}");
+        assert!(
+            text.contains("terminal") && text.contains("small"),
+            "{w}x{h}: {text:?}"
+        );
     }
     let terminal = draw(&app, 20, 8);
     let text: String = terminal

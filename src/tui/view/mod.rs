@@ -104,6 +104,7 @@ impl Widget for &App {
                 Line::from("terminal too small"),
                 Line::from(format!("need {}×{}", MIN_SIZE.0, MIN_SIZE.1)),
             ])
+            .wrap(ratatui::widgets::Wrap { trim: true })
             .render(area, buf);
             return;
         };
