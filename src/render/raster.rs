@@ -100,7 +100,7 @@ impl ScreenTriangle {
         let l1 = edge(tx[2], ty[2], tx[0], ty[0], px, py) as f32 * self.inv_area;
         let l2 = edge(tx[0], ty[0], tx[1], ty[1], px, py) as f32 * self.inv_area;
         let l0 = 1.0 - l1 - l2;
-        let b = (self.bary_w[0] * l0 + self.bary_w[1] * l1 + self.bary_w[2] * l2) / inv_w;
+        let b = (self.bary_w[0] * l0 + self.bary_w[1] * l1 + self.bary_w[2] * l2) * inv_w.recip();
         Fragment {
             inv_w,
             object: self.object,
