@@ -303,3 +303,44 @@ fn typing_replaces_the_shown_value_and_backspace_edits_it() {
     };
     assert_eq!(radius, 1.0);
 }
+
+#[test]
+fn saving_into_another_folder_keeps_mesh_paths_pointing_at_their_models() {
+    let dir = tempfile::tempdir().unwrap();
+    let models = dir.path().join("models");
+    std::fs::create_dir(&models).unwrap();
+    std::fs::write(
+        models.join("quad.obj"),
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    let mut app = App::new(default_scene(), None, dir.path().to_path_buf());
+    run(&mut app, [Action::Add(AddKind::Mesh)]);
+    run(&mut app, "models/quad.obj".chars().map(Action::Input));
+    run(&mut app, [Action::Submit]);
+    assert_eq!(
+        app.mode,
+        Mode::Normal,
+        "the model is found relative to the scene's folder"
+    );
+    let mesh_path = |app: &App| match &app.scene.objects.last().unwrap().shape {
+        Shape::Mesh { path, .. } => path.clone(),
+        other => panic!("expected a mesh, got {other:?}"),
+    };
+    assert_eq!(mesh_path(&app), PathBuf::from("models/quad.obj"));
+
+    // Save into a sub-folder: the saved scene must still find the model.
+    let elsewhere = dir.path().join("scenes").join("copy.toml");
+    std::fs::create_dir(elsewhere.parent().unwrap()).unwrap();
+    run(&mut app, [Action::SaveAs]);
+    run(&mut app, [Action::ClearInput]);
+    run(
+        &mut app,
+        elsewhere.display().to_string().chars().map(Action::Input),
+    );
+    run(&mut app, [Action::Submit]);
+    assert_eq!(app.mode, Mode::Normal);
+    let saved = rastray::scene::load(&elsewhere).unwrap();
+    rastray::World::build(&saved, elsewhere.parent().unwrap()).expect("the mesh still loads");
+    assert_eq!(mesh_path(&app), PathBuf::from("../models/quad.obj"));
+}

@@ -25,10 +25,15 @@ pub(super) fn save(app: &mut App) {
 }
 
 pub(super) fn save_to(app: &mut App, path: &Path) -> Result<(), String> {
-    crate::scene::save(&app.scene, path).map_err(|e| e.to_string())?;
+    // Mesh paths are relative to the scene file: saving into another folder re-expresses them.
+    let new_base = base_of(path);
+    let mut scene = app.scene.clone();
+    rebase_mesh_paths(&mut scene, &app.base_dir, &new_base);
+    crate::scene::save(&scene, path).map_err(|e| e.to_string())?;
+    app.scene = scene;
     app.dirty = false;
     if app.path.as_deref() != Some(path) {
-        app.base_dir = base_of(path);
+        app.base_dir = new_base;
         app.path = Some(path.to_path_buf());
         app.generation += 1;
     }
@@ -38,6 +43,38 @@ pub(super) fn save_to(app: &mut App, path: &Path) -> Result<(), String> {
 
 pub(super) fn base_of(path: &Path) -> PathBuf {
     path.parent().map(Path::to_path_buf).unwrap_or_default()
+}
+
+/// `path` as written in a scene whose file lives in `base`: relative to `base` (with `..` where
+/// needed) when both share a root, absolute otherwise.
+fn relative_to(path: &Path, base: &Path) -> PathBuf {
+    let absolute = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+    let (path, base) = (absolute(path), absolute(base));
+    let (p, b): (Vec<_>, Vec<_>) = (path.components().collect(), base.components().collect());
+    let common = p.iter().zip(&b).take_while(|(x, y)| x == y).count();
+    if common == 0 {
+        return path;
+    }
+    let mut relative: PathBuf = b[common..].iter().map(|_| "..").collect();
+    relative.extend(&p[common..]);
+    relative
+}
+
+/// Rewrites the mesh paths of `scene`, relative to folder `from`, to be relative to `to`.
+fn rebase_mesh_paths(scene: &mut crate::Scene, from: &Path, to: &Path) {
+    for object in &mut scene.objects {
+        if let Shape::Mesh { path, .. } = &mut object.shape {
+            *path = relative_to(&from.join(&*path), to);
+        }
+    }
+}
+
+/// Where a typed OBJ path points: relative to the working directory, as in a shell, or else to
+/// the scene's folder. `None` when neither is a file.
+fn find_obj(typed: &Path, base_dir: &Path) -> Option<PathBuf> {
+    [typed.to_path_buf(), base_dir.join(typed)]
+        .into_iter()
+        .find(|p| p.is_file())
 }
 
 pub(super) fn prompt(
@@ -63,20 +100,17 @@ pub(super) fn prompt(
     let result = match purpose {
         PromptPurpose::SaveAs => save_to(app, &path),
         PromptPurpose::Open => open(app, &path),
-        PromptPurpose::ObjPath => {
-            if app.base_dir.join(&path).is_file() {
+        PromptPurpose::ObjPath => match find_obj(&path, &app.base_dir) {
+            Some(found) => {
+                let stored = relative_to(&found, &app.base_dir);
                 add_object(
                     app,
-                    Object::new(Shape::new(ShapeKind::Mesh, app.scene.camera.target, path)),
+                    Object::new(Shape::new(ShapeKind::Mesh, app.scene.camera.target, stored)),
                 );
                 Ok(())
-            } else {
-                Err(format!(
-                    "{} is not a file",
-                    app.base_dir.join(&path).display()
-                ))
             }
-        }
+            None => Err(format!("{} is not a file", path.display())),
+        },
     };
     match result {
         Ok(()) => Mode::Normal,
