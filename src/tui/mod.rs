@@ -135,8 +135,16 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
 }
 
 /// The app on the scene at `path`, or on the built-in scene.
+/// The editor on the scene at `path`; a path that does not exist yet starts a new scene there
+/// from the built-in one (written on the first save), as text editors do with a new file name.
 fn load(path: Option<&Path>) -> anyhow::Result<App> {
     Ok(match path {
+        Some(p) if !p.exists() => {
+            let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
+            let mut app = App::new(crate::scene::default_scene(), Some(p.to_path_buf()), base);
+            app.info(format!("new scene {}: s saves it", p.display()));
+            app
+        }
         Some(p) => {
             let scene = crate::scene::load(p)?;
             let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
