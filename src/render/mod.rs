@@ -48,6 +48,18 @@ pub fn render(
     options: &RenderOptions,
     progress: &Progress,
 ) -> Result<Frame, RenderError> {
+    render_prepared(world, None, camera, options, progress)
+}
+
+/// As [`render`], reusing the ray tracer's acceleration structure when one built from this very
+/// `world` is given (the editor keeps it while only the camera moves); built here when needed.
+pub fn render_prepared(
+    world: &World,
+    accel: Option<&accel::SceneAccel>,
+    camera: &Camera,
+    options: &RenderOptions,
+    progress: &Progress,
+) -> Result<Frame, RenderError> {
     options.check()?;
     let n = options.samples;
     let full = View::new(camera, options.width * n, options.height * n);
@@ -56,7 +68,11 @@ pub fn render(
         .clamp(1, options.height as u64) as u32;
     let mut pixels = Vec::with_capacity(options.width as usize * options.height as usize);
     // The ray tracer's acceleration structure is built once for all strips.
-    let accel = (options.algorithm == Algorithm::Ray).then(|| accel::SceneAccel::build(world));
+    let built = match accel {
+        None if options.algorithm == Algorithm::Ray => Some(accel::SceneAccel::build(world)),
+        _ => None,
+    };
+    let accel = accel.or(built.as_ref());
     for first in (0..options.height).step_by(strip_rows as usize) {
         let rows = strip_rows.min(options.height - first);
         let view = full.rows(first * n, rows * n);
@@ -64,7 +80,7 @@ pub fn render(
             Algorithm::Gouraud => gouraud::render(world, &view, progress)?,
             Algorithm::Phong => phong::render(world, &view, progress)?,
             Algorithm::Ray => {
-                let accel = accel.as_ref().expect("built above for the ray tracer");
+                let accel = accel.expect("given or built above for the ray tracer");
                 raytrace::render_with(accel, world, &view, options, progress)?
             }
         };

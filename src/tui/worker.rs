@@ -9,7 +9,8 @@ use std::time::Instant;
 
 use super::preview::PreviewImage;
 use crate::World;
-use crate::render::{Algorithm, Progress, RenderError, RenderOptions, render};
+use crate::render::accel::SceneAccel;
+use crate::render::{Algorithm, Progress, RenderError, RenderOptions, render_prepared};
 use crate::scene::{Camera, Scene};
 use crate::world::ObjCache;
 
@@ -124,6 +125,8 @@ impl Worker {
 fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
     let mut cache = ObjCache::default();
     let mut world: Option<(u64, Arc<World>)> = None;
+    // The ray tracer's BVH of the current world, kept while only the camera moves.
+    let mut accel: Option<(u64, SceneAccel)> = None;
     while let Ok(mut request) = rx.recv() {
         while let Ok(newer) = rx.try_recv() {
             request = newer;
@@ -153,8 +156,18 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
         for (n, job) in request.wanted.jobs.iter().enumerate() {
             let options = RenderOptions::new(job.algorithm, job.width, job.height);
             let started = Instant::now();
-            match render(
+            if job.algorithm == Algorithm::Ray
+                && accel.as_ref().is_none_or(|(g, _)| *g != generation)
+            {
+                accel = Some((generation, SceneAccel::build(&current)));
+            }
+            let prepared = accel
+                .as_ref()
+                .filter(|(g, _)| *g == generation)
+                .map(|(_, a)| a);
+            match render_prepared(
                 &current,
+                prepared,
                 &request.wanted.camera,
                 &options,
                 &request.progress,
