@@ -50,6 +50,17 @@ fn draw(app: &App, width: u16, height: u16) -> Terminal<TestBackend> {
     terminal
 }
 
+/// Every cell's symbol, row after row.
+fn screen_text(terminal: &Terminal<TestBackend>) -> String {
+    terminal
+        .backend()
+        .buffer()
+        .content()
+        .iter()
+        .map(|c| c.symbol())
+        .collect()
+}
+
 /// Gives the app previews of the sizes its layout asks for.
 fn fill_previews(app: &mut App, width: u16, height: u16) {
     let areas = layout(Rect::new(0, 0, width, height), app).unwrap();
@@ -133,27 +144,13 @@ fn a_tiny_terminal_says_so_without_panicking() {
     draw(&app, 1, 1);
     draw(&app, 0, 0);
     for (w, h) in [(10, 5), (19, 8), (20, 7)] {
-        let terminal = draw(&app, w, h);
-        let text: String = terminal
-            .backend()
-            .buffer()
-            .content()
-            .iter()
-            .map(|c| c.symbol())
-            .collect();
+        let text = screen_text(&draw(&app, w, h));
         assert!(
             text.contains("terminal") && text.contains("small"),
             "{w}x{h}: {text:?}"
         );
     }
-    let terminal = draw(&app, 20, 8);
-    let text: String = terminal
-        .backend()
-        .buffer()
-        .content()
-        .iter()
-        .map(|c| c.symbol())
-        .collect();
+    let text = screen_text(&draw(&app, 20, 8));
     assert!(!text.contains("too small"));
 }
 
@@ -161,14 +158,7 @@ fn a_tiny_terminal_says_so_without_panicking() {
 fn control_characters_in_names_are_not_drawn() {
     let mut app = app();
     app.scene.objects[0].name = Some("evil\x1b[2Jname\x07".into());
-    let terminal = draw(&app, 100, 30);
-    let text: String = terminal
-        .backend()
-        .buffer()
-        .content()
-        .iter()
-        .map(|c| c.symbol())
-        .collect();
+    let text = screen_text(&draw(&app, 100, 30));
     assert!(text.contains("evil[2Jname"));
     assert!(!text.contains('\x1b') && !text.contains('\x07'));
 }
