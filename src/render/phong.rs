@@ -10,7 +10,9 @@ use crate::world::World;
 /// Renders `world` through `view` (one sample per pixel).
 pub fn render(world: &World, view: &View, progress: &Progress) -> Result<Frame, Cancelled> {
     let lighting = lighting(world);
-    // Fragment stage: the varyings are the world position and the normal.
+    // Fragment stage: the varyings are the world position and the normal. The ray tracer
+    // interpolates its hits the same way (`raytrace::Tracer::trace`); a shared helper measured
+    // 20% slower here, so the four lines stand twice.
     draw(world, view, progress, |f| {
         let mesh = &world.objects[f.object as usize].mesh;
         let [a, b, c] = mesh.triangles[f.triangle as usize].map(|i| i as usize);
