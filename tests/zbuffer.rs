@@ -5,6 +5,7 @@ mod common;
 
 use glam::{Affine3A, Quat, Vec3};
 use rastray::mesh::{FaceList, with_normals};
+use rastray::render::lane_vec::V3;
 use rastray::render::raster::coverage_counts;
 use rastray::render::{Algorithm, View};
 use rastray::world::WorldObject;
@@ -230,8 +231,11 @@ material = { color = [0.5, 0.5, 0.5] }
     // Depth check against the analytic exit distance of each ray from the box.
     let world = common::world(&scene);
     let mut depths = vec![0.0f32; 64 * 48];
-    rastray::render::raster::draw(&world, &view, &rastray::render::Progress::new(), |f| {
-        Vec3::splat(1.0 / f.inv_w)
+    let normals: Vec<&[Vec3]> = world.objects.iter().map(|o| &o.mesh.normals[..]).collect();
+    let progress = rastray::render::Progress::new();
+    rastray::render::raster::draw(&world, &view, &progress, &normals, |fragments, out| {
+        let depth = fragments.depth;
+        fragments.write(V3::new(depth, depth, depth), out)
     })
     .expect("draw")
     .pixels

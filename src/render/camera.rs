@@ -6,6 +6,8 @@
 
 use glam::{Vec2, Vec3};
 
+use super::lane_vec::V3;
+use super::lanes::Lanes;
 use crate::scene::Camera;
 
 /// Distance of the near clipping plane in front of the eye, world units.
@@ -72,12 +74,21 @@ impl View {
     /// (i, j) is (i + 0.5, j + 0.5).
     #[inline]
     pub fn ray_direction(&self, x: f32, y: f32) -> Vec3 {
-        let ndc_x = 2.0 * x / self.width as f32 - 1.0;
-        let ndc_y = 1.0 - 2.0 * (y + self.row_offset as f32) / self.image_height as f32;
-        (self.forward
-            + self.right * (ndc_x * self.tan_half_fov * self.aspect)
-            + self.up * (ndc_y * self.tan_half_fov))
-            .normalize()
+        self.pixel_direction(x, y).normalize_or_zero().to_vec3()
+    }
+
+    /// Direction from the eye through continuous pixel coordinates (x, y) of each lane, scaled
+    /// so that its component along `forward` is 1: the point at depth w on that ray is
+    /// `eye + direction·w`. Rays and rasterizer both call this.
+    #[inline(always)]
+    pub fn pixel_direction<L: Lanes>(&self, x: L, y: L) -> V3<L> {
+        let ndc_x = L::splat(2.0) * x / L::splat(self.width as f32) - L::splat(1.0);
+        let ndc_y = L::splat(1.0)
+            - L::splat(2.0) * (y + L::splat(self.row_offset as f32))
+                / L::splat(self.image_height as f32);
+        let sx = ndc_x * L::splat(self.tan_half_fov * self.aspect);
+        let sy = ndc_y * L::splat(self.tan_half_fov);
+        V3::splat(self.forward) + V3::splat(self.right) * sx + V3::splat(self.up) * sy
     }
 
     /// Homogeneous clip coordinates (x, y, w) of world point `p`: w is the depth along the view

@@ -5,31 +5,46 @@ use rayon::prelude::*;
 
 use super::camera::View;
 use super::frame::Frame;
+use super::lane_vec::V3;
+use super::lanes::WIDTH;
+use super::materials::ObjectMaterials;
 use super::progress::{Cancelled, Progress};
 use super::raster::draw;
-use super::zbuffer::{interpolate, lighting};
+use super::shading::Lighting;
 use crate::world::World;
 
 /// Renders `world` through `view` (one sample per pixel).
 pub fn render(world: &World, view: &View, progress: &Progress) -> Result<Frame, Cancelled> {
-    let lighting = lighting(world);
-    // Vertex stage: the varying is the lit colour of each vertex.
-    let colors: Vec<Vec<Vec3>> = world
+    let colors = vertex_colors(world, view);
+    let colors: Vec<&[Vec3]> = colors.iter().map(Vec::as_slice).collect();
+    // Fragment stage: the interpolated colour is the pixel's colour.
+    draw(world, view, progress, &colors, |fragments, out| {
+        fragments.write(fragments.varying, out);
+    })
+}
+
+/// Vertex stage: every vertex lit with its normal, seen from the eye; `[object][vertex]`.
+fn vertex_colors(world: &World, view: &View) -> Vec<Vec<Vec3>> {
+    let lighting = Lighting::new(world);
+    let materials = ObjectMaterials::new(world);
+    world
         .objects
         .par_iter()
-        .map(|o| {
-            o.mesh
+        .zip(&materials.lanes)
+        .map(|(o, material)| {
+            let mut colors = Vec::with_capacity(o.mesh.positions.len());
+            for (p, n) in o
+                .mesh
                 .positions
-                .par_iter()
-                .zip(o.mesh.normals.par_iter())
-                .map(|(&p, &n)| {
-                    lighting.shade(p, n, (view.eye - p).normalize(), &o.material, |_, _| true)
-                })
-                .collect()
+                .chunks(WIDTH)
+                .zip(o.mesh.normals.chunks(WIDTH))
+            {
+                let (count, p, n) = (p.len(), V3::gather(p), V3::gather(n));
+                let v = (V3::splat(view.eye) - p).normalize_or_zero();
+                let c = lighting.shade_lanes(p, n, v, material, |_, _, facing| facing);
+                colors.extend_from_slice(&c.to_vec3s()[..count]);
+            }
+            colors
         })
-        .collect();
-    // Fragment stage: interpolate the vertex colours.
-    draw(world, view, progress, |f| {
-        interpolate(world, f, |o, v| colors[o][v as usize])
-    })
+        .collect()
 }

@@ -1,26 +1,39 @@
-//! Z-buffer with Phong shading: interpolate the normal and position, light every pixel.
+//! Z-buffer with Phong shading: interpolate the normal, light every pixel.
+
+use glam::Vec3;
 
 use super::camera::View;
 use super::frame::Frame;
+use super::lane_vec::V3;
+use super::lanes::F32x8;
+use super::materials::ObjectMaterials;
 use super::progress::{Cancelled, Progress};
 use super::raster::draw;
-use super::zbuffer::lighting;
+use super::shading::Lighting;
 use crate::world::World;
 
 /// Renders `world` through `view` (one sample per pixel).
 pub fn render(world: &World, view: &View, progress: &Progress) -> Result<Frame, Cancelled> {
-    let lighting = lighting(world);
-    // Fragment stage: the varyings are the world position and the normal. The ray tracer
-    // interpolates its hits the same way (`raytrace::Tracer::trace`); a shared helper measured
-    // 20% slower here, so the four lines stand twice.
-    draw(world, view, progress, |f| {
-        let mesh = &world.objects[f.object as usize].mesh;
-        let [a, b, c] = mesh.triangles[f.triangle as usize].map(|i| i as usize);
-        let [w0, w1, w2] = f.weights();
-        let p = mesh.positions[a] * w0 + mesh.positions[b] * w1 + mesh.positions[c] * w2;
-        let n = (mesh.normals[a] * w0 + mesh.normals[b] * w1 + mesh.normals[c] * w2)
-            .normalize_or_zero();
-        let material = &world.objects[f.object as usize].material;
-        lighting.shade(p, n, (view.eye - p).normalize(), material, |_, _| true)
+    let lighting = Lighting::new(world);
+    let materials = ObjectMaterials::new(world);
+    // The varying is the vertex normal. The surface point is found on the pixel's ray at the
+    // interpolated depth, which is the perspective-correct interpolated position, and the very
+    // point the ray tracer's primary ray meets.
+    let normals: Vec<&[Vec3]> = world.objects.iter().map(|o| &o.mesh.normals[..]).collect();
+    draw(world, view, progress, &normals, |fragments, out| {
+        let x = F32x8::from(fragments.x.map(|c| c as f32 + 0.5));
+        let ray = view.pixel_direction(x, F32x8::splat(fragments.y as f32 + 0.5));
+        let p = V3::splat(view.eye) + ray * fragments.depth;
+        let v = (-ray).normalize_or_zero();
+        let n = fragments.varying.normalize_or_zero();
+        let gathered;
+        let material = if fragments.one_object {
+            &materials.lanes[fragments.object[0] as usize]
+        } else {
+            gathered = materials.gather(&fragments.object);
+            &gathered
+        };
+        let color = lighting.shade_lanes(p, n, v, material, |_, _, facing| facing);
+        fragments.write(color, out);
     })
 }

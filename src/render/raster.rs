@@ -1,23 +1,29 @@
 //! The Z-buffer rasterizer shared by Gouraud and Phong shading.
 //!
-//! It writes a visibility buffer: for each pixel, the nearest triangle and the perspective-correct
-//! barycentric coordinates of the pixel centre on it. Shading is a separate pass over that buffer,
-//! so each pixel is shaded once however much overdraw the scene has, and Gouraud and Phong differ
-//! only in what they interpolate (a colour or a normal and position).
-//!
 //! Stages: vertex (clip coordinates) → triangle setup (near and guard-band clipping in homogeneous
-//! space, fixed-point snapping, bounding box) → binning into row bands → per band, in triangle
-//! order: coverage by integer edge functions with the top-left rule, depth test on 1/w.
+//! space, fixed-point snapping, bounding box, and the screen-space planes of the interpolants
+//! (varying·1/w, 1/w)) → binning into row bands → per band, in triangle order: coverage by exact
+//! integer edge functions with the top-left rule, and a depth test on 1/w that keeps the nearest
+//! triangle per pixel → per row, the covered pixels go to the shader eight at a time
+//! ([`Fragments`]) with their depth and perspective-correct varying. Each pixel is shaded once,
+//! however much overdraw the scene has, and Gouraud and Phong differ only in the varying they
+//! interpolate (a lit vertex colour, or a normal).
+//!
 //! Bands run in parallel; each band's result depends only on the triangle order, so the output is
 //! the same for any number of threads.
 
-use glam::{Vec2, Vec3};
+use std::ops::Range;
+
+use glam::{DVec4, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
 use super::camera::{NEAR, View};
+use super::fragments::{Fragments, Packer};
 use super::frame::Frame;
+use super::lanes::{F32x8, WIDTH, load};
 use super::progress::{Cancelled, Progress};
 use crate::world::World;
+use wide::{CmpGe, u32x8};
 
 /// Sub-pixel precision of snapped vertex coordinates: 1/256 pixel.
 const SUBPIXEL_BITS: u32 = 8;
@@ -29,85 +35,72 @@ const BAND_ROWS: u32 = 8;
 const GUARD: f32 = 4.0;
 /// Triangles per parallel setup task.
 const SETUP_CHUNK: usize = 4096;
+/// Bits of a screen triangle's index within its setup chunk (see [`ScreenTriangles`]).
+const INDEX_BITS: u32 = 15;
+/// Clipping against the near plane and the four guard-band planes turns a triangle into a polygon
+/// of at most 3 + 5 vertices: a fan of at most this many triangles.
+const MAX_FAN: usize = 6;
+const _: () = assert!(SETUP_CHUNK * MAX_FAN < 1 << INDEX_BITS);
 
-/// The nearest surface at one pixel centre.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Fragment {
-    /// 1/w of the surface (w = depth along the view direction): larger is nearer.
-    pub inv_w: f32,
-    /// Object index in the world.
-    pub object: u32,
-    /// Triangle index within the object's mesh.
-    pub triangle: u32,
-    /// Perspective-correct barycentric weights of the triangle's 2nd and 3rd vertices
-    /// (the 1st has 1 − b1 − b2).
-    pub b1: f32,
-    pub b2: f32,
-}
-
-impl Fragment {
-    /// No surface.
-    pub const EMPTY: Fragment = Fragment {
-        inv_w: 0.0,
-        object: u32::MAX,
-        triangle: 0,
-        b1: 0.0,
-        b2: 0.0,
-    };
-
-    /// Whether a surface was drawn here.
-    #[inline]
-    pub fn is_covered(&self) -> bool {
-        self.object != u32::MAX
-    }
-
-    /// The three barycentric weights.
-    #[inline]
-    pub fn weights(&self) -> [f32; 3] {
-        [1.0 - self.b1 - self.b2, self.b1, self.b2]
-    }
-}
-
-/// A triangle ready for scan conversion: snapped, counter-clockwise in fixed point.
+/// A triangle ready for scan conversion: snapped, counter-clockwise in fixed point, with the
+/// screen-space plane of its interpolants.
+///
+/// The interpolants are (varying·1/w, 1/w): both are affine in screen space, so each is a plane
+/// `at_ref + per_x·(x − ref_x) + per_y·(y − ref_y)` over pixel centres, and dividing by the
+/// fourth gives the perspective-correct varying. The reference is the pixel holding vertex 0, so
+/// strips of an image evaluate the planes exactly as the whole image does.
 #[derive(Debug, Clone, Copy)]
 struct ScreenTriangle {
     /// Vertex pixel coordinates in 1/256 pixel.
     x: [i32; 3],
     y: [i32; 3],
-    /// 1/w at each vertex.
-    inv_w: [f32; 3],
-    /// Original-triangle barycentrics (b1, b2) at each vertex, premultiplied by 1/w.
-    bary_w: [Vec2; 3],
-    /// 1 / (twice the area in square fixed-point units), > 0.
-    inv_area: f32,
-    object: u32,
-    triangle: u32,
     /// Inclusive pixel bounds, inside the image.
     min_x: i32,
     max_x: i32,
     min_y: i32,
     max_y: i32,
+    /// The reference pixel.
+    ref_x: i32,
+    ref_y: i32,
+    /// Interpolants at the reference pixel's centre, and their change per pixel right and down.
+    at_ref: Vec4,
+    per_x: Vec4,
+    per_y: Vec4,
+    object: u32,
 }
 
 impl ScreenTriangle {
-    /// The fragment at the centre of pixel (x, y), where the surface's 1/w is `inv_w`.
-    #[inline]
-    fn fragment(&self, x: i32, y: i32, inv_w: f32) -> Fragment {
-        let half = 1 << (SUBPIXEL_BITS - 1);
-        let (px, py) = ((x << SUBPIXEL_BITS) + half, (y << SUBPIXEL_BITS) + half);
-        let (tx, ty) = (&self.x, &self.y);
-        // Screen-space weights of the vertices, then perspective-correct original barycentrics.
-        let l1 = edge(tx[2], ty[2], tx[0], ty[0], px, py) as f32 * self.inv_area;
-        let l2 = edge(tx[0], ty[0], tx[1], ty[1], px, py) as f32 * self.inv_area;
-        let l0 = 1.0 - l1 - l2;
-        let b = (self.bary_w[0] * l0 + self.bary_w[1] * l1 + self.bary_w[2] * l2) * inv_w.recip();
-        Fragment {
-            inv_w,
-            object: self.object,
-            triangle: self.triangle,
-            b1: b.x,
-            b2: b.y,
-        }
+    /// (varying·1/w, 1/w) at the centre of pixel (x, y).
+    #[inline(always)]
+    fn interpolants(&self, x: i32, y: i32) -> Vec4 {
+        self.at_ref + self.per_x * (x - self.ref_x) as f32 + self.per_y * (y - self.ref_y) as f32
+    }
+}
+
+/// The screen triangles of a frame, kept in the chunks that set them up in parallel (joining
+/// them would copy a hundred megabytes for a million-triangle mesh). A triangle's id is its chunk
+/// times 2^[`INDEX_BITS`] plus its index in the chunk; ids increase in triangle order.
+#[derive(Debug, Default)]
+struct ScreenTriangles {
+    chunks: Vec<Vec<ScreenTriangle>>,
+}
+
+impl ScreenTriangles {
+    /// The triangle with id `id`.
+    #[inline(always)]
+    fn get(&self, id: u32) -> &ScreenTriangle {
+        &self.chunks[(id >> INDEX_BITS) as usize][(id & ((1 << INDEX_BITS) - 1)) as usize]
+    }
+
+    /// Every triangle with its id, in triangle order.
+    fn iter(&self) -> impl Iterator<Item = (u32, &ScreenTriangle)> {
+        self.chunks.iter().enumerate().flat_map(|(c, chunk)| {
+            let first = (c as u32) << INDEX_BITS;
+            chunk
+                .iter()
+                .enumerate()
+                .map(move |(i, t)| (first + i as u32, t))
+        })
     }
 }
 
@@ -127,62 +120,66 @@ impl ClipVertex {
     }
 }
 
-/// Draws `world` seen through `view`: rasterizes each band into a visibility buffer (the nearest
-/// triangle per pixel centre), then calls `shade` once per covered pixel with the fragment there.
-/// Uncovered pixels get the background. Shading right after each band keeps the band's buffer in
-/// cache, and each pixel is shaded once however much overdraw the scene has.
+/// Per-band buffers, reused by each worker thread from band to band.
+#[derive(Debug, Default)]
+struct BandBuffers {
+    /// 1/w of the nearest surface so far (0 = nothing).
+    depth: Vec<f32>,
+    /// Number + 1 of the screen triangle that drew the pixel (0 = nothing).
+    id: Vec<u32>,
+}
+
+/// Draws `world` seen through `view`. Each band of rows is scan-converted with a depth test on
+/// 1/w, keeping the nearest triangle per pixel centre; then the covered pixels of each row are
+/// handed to `shade` eight at a time as [`Fragments`], with `varyings[object][vertex]`
+/// interpolated perspective-correctly, and `shade` writes their colours into the row. Uncovered
+/// pixels get the background. Shading after the depth test shades each pixel once however much
+/// overdraw the scene has, and shading right after each band keeps the band's buffers in cache.
 pub fn draw(
     world: &World,
     view: &View,
     progress: &Progress,
-    shade: impl Fn(&Fragment) -> Vec3 + Sync,
+    varyings: &[&[Vec3]],
+    shade: impl Fn(&Fragments, &mut [Vec3]) + Sync,
 ) -> Result<Frame, Cancelled> {
     let (width, height) = (view.width, view.height);
-    let triangles = setup(world, view);
+    let triangles = setup(world, view, varyings);
     let bins = bin(&triangles, height);
-    let mut pixels = vec![world.background; width as usize * height as usize];
+    // Zeroed memory comes as untouched pages from the system, so the bands, which write every
+    // pixel, fault their pages in in parallel rather than waiting for one thread to fill them.
+    let mut pixels = bytemuck::zeroed_vec::<Vec3>(width as usize * height as usize);
     pixels
         .par_chunks_mut((BAND_ROWS * width) as usize)
         .zip(bins.par_iter())
         .enumerate()
-        .try_for_each_init(Vec::new, |samples: &mut Vec<u64>, (band, (rows, bin))| {
+        .try_for_each_init(BandBuffers::default, |buffers, (band, (rows, bin))| {
             progress.check()?;
             let top = band as u32 * BAND_ROWS;
             let band_rows = rows.len() as u32 / width;
-            // Each sample packs the nearest surface's 1/w (f32 bits, high half) with the number + 1
-            // of the screen triangle that drew it (low half); 0 is empty. Positive floats order like
-            // their bits, so one integer max is the depth test, and an exact depth tie goes to the
-            // later triangle whatever order the threads ran in.
-            samples.clear();
-            samples.resize(rows.len(), 0);
-            scan_band(
-                &triangles,
-                bin,
-                width,
-                top,
-                band_rows,
-                |index, i, tri, lambda| {
-                    let inv_w = lambda[0] * tri.inv_w[0]
-                        + lambda[1] * tri.inv_w[1]
-                        + lambda[2] * tri.inv_w[2];
-                    let sample = ((inv_w.to_bits() as u64) << 32) | (i as u64 + 1);
-                    samples[index] = samples[index].max(sample);
-                },
-            );
-            for (r, (row, row_samples)) in rows
+            let BandBuffers { depth, id } = buffers;
+            depth.clear();
+            depth.resize(rows.len(), 0.0);
+            id.clear();
+            id.resize(rows.len(), 0);
+            scan_band(&triangles, bin, width, top, band_rows, |span, i, t, y| {
+                let z0 = t.interpolants(t.min_x + span.start as i32, y).w;
+                let start = (y as u32 - top) as usize * width as usize + t.min_x as usize;
+                let range = start + span.start..start + span.end;
+                depth_test(
+                    &mut depth[range.clone()],
+                    &mut id[range],
+                    z0,
+                    t.per_x.w,
+                    i + 1,
+                );
+            });
+            for (r, (out, ids)) in rows
                 .chunks_mut(width as usize)
-                .zip(samples.chunks(width as usize))
+                .zip(id.chunks(width as usize))
                 .enumerate()
             {
-                for (x, (pixel, &sample)) in row.iter_mut().zip(row_samples).enumerate() {
-                    let id = (sample & 0xffff_ffff) as usize;
-                    if id != 0 {
-                        let inv_w = f32::from_bits((sample >> 32) as u32);
-                        let fragment =
-                            triangles[id - 1].fragment(x as i32, (top + r as u32) as i32, inv_w);
-                        *pixel = shade(&fragment);
-                    }
-                }
+                let y = top + r as u32;
+                shade_row(&triangles, ids, y, world.background, &shade, out);
             }
             progress.advance(band_rows as u64);
             Ok(())
@@ -194,12 +191,82 @@ pub fn draw(
     })
 }
 
+/// Shades row `y`, whose pixels were drawn by screen triangles `ids` (number + 1; 0 = none):
+/// runs of one triangle go to `shade` as whole spans of eight, the rest packed into lanes.
+#[inline]
+fn shade_row(
+    triangles: &ScreenTriangles,
+    ids: &[u32],
+    y: u32,
+    background: Vec3,
+    shade: &impl Fn(&Fragments, &mut [Vec3]),
+    out: &mut [Vec3],
+) {
+    let mut packer = Packer::default();
+    let mut x = 0;
+    while x < ids.len() {
+        let id = ids[x];
+        let run = ids[x..].iter().take_while(|&&i| i == id).count();
+        if id == 0 {
+            out[x..x + run].fill(background);
+        } else {
+            let t = triangles.get(id - 1);
+            let at_start = t.interpolants(x as i32, y as i32);
+            let whole = run - run % WIDTH;
+            for k in (0..whole).step_by(WIDTH) {
+                shade(&Fragments::span(y, x, k, t.object, at_start, t.per_x), out);
+            }
+            for k in whole..run {
+                let interpolants = at_start + t.per_x * k as f32;
+                if packer.push((x + k) as u32, t.object, interpolants) {
+                    shade(&packer.take(y).expect("a full packer"), out);
+                }
+            }
+        }
+        x += run;
+    }
+    if let Some(rest) = packer.take(y) {
+        shade(&rest, out);
+    }
+}
+
+/// The depth test along one span: pixel k has 1/w = z0 + k·dz; where that is at least the stored
+/// 1/w (larger is nearer), it is stored with the triangle's `id`. An exact tie goes to the later
+/// triangle, the same whatever order the threads ran in. Eight pixels at a time, then one by one.
+#[inline]
+fn depth_test(depth: &mut [f32], ids: &mut [u32], z0: f32, dz: f32, id: u32) {
+    let lanes = F32x8::from(std::array::from_fn::<f32, WIDTH, _>(|k| k as f32));
+    let (z0_lanes, dz_lanes, id_lanes) = (F32x8::splat(z0), F32x8::splat(dz), u32x8::splat(id));
+    let mut d_chunks = depth.chunks_exact_mut(WIDTH);
+    let mut i_chunks = ids.chunks_exact_mut(WIDTH);
+    let mut first = 0;
+    for (d, i) in (&mut d_chunks).zip(&mut i_chunks) {
+        // k + lane is an exact integer in f32, so each lane computes what the scalar loop would.
+        let z = z0_lanes + dz_lanes * (F32x8::splat(first as f32) + lanes);
+        let stored = load(d);
+        let nearer = z.cmp_ge(stored);
+        d.copy_from_slice(&nearer.blend(z, stored).to_array());
+        let old: [u32; WIDTH] = (&*i).try_into().expect("lanes");
+        let kept = bytemuck::cast::<_, u32x8>(nearer).blend(id_lanes, u32x8::from(old));
+        i.copy_from_slice(&kept.to_array());
+        first += WIDTH;
+    }
+    let rest = d_chunks.into_remainder().iter_mut();
+    for (k, (d, i)) in rest.zip(i_chunks.into_remainder()).enumerate() {
+        let z = z0 + dz * (first + k) as f32;
+        if z >= *d {
+            (*d, *i) = (z, id);
+        }
+    }
+}
+
 /// How many times each pixel centre is covered by some triangle, with no depth test: a closed
 /// surface seen from outside covers each pixel it projects onto exactly twice (front and back),
 /// a single flat patch exactly once. Used to check the fill rule.
 pub fn coverage_counts(world: &World, view: &View) -> Vec<u32> {
     let (width, height) = (view.width, view.height);
-    let triangles = setup(world, view);
+    let normals: Vec<&[Vec3]> = world.objects.iter().map(|o| &o.mesh.normals[..]).collect();
+    let triangles = setup(world, view, &normals);
     let bins = bin(&triangles, height);
     let mut counts = vec![0u32; width as usize * height as usize];
     counts
@@ -208,20 +275,21 @@ pub fn coverage_counts(world: &World, view: &View) -> Vec<u32> {
         .enumerate()
         .for_each(|(band, (rows, bin))| {
             let top = band as u32 * BAND_ROWS;
-            scan_band(
-                &triangles,
-                bin,
-                width,
-                top,
-                rows.len() as u32 / width,
-                |index, _, _, _| rows[index] += 1,
-            );
+            let band_rows = rows.len() as u32 / width;
+            scan_band(&triangles, bin, width, top, band_rows, |span, _, t, y| {
+                let start = (y as u32 - top) as usize * width as usize + t.min_x as usize;
+                for count in &mut rows[start + span.start..start + span.end] {
+                    *count += 1;
+                }
+            });
         });
     counts
 }
 
-/// Vertex stage and triangle setup for every triangle of the world, in object then triangle order.
-fn setup(world: &World, view: &View) -> Vec<ScreenTriangle> {
+/// Vertex stage and triangle setup for every triangle of the world, in object then triangle
+/// order, carrying `varyings[object][vertex]`.
+fn setup(world: &World, view: &View, varyings: &[&[Vec3]]) -> ScreenTriangles {
+    debug_assert_eq!(varyings.len(), world.objects.len());
     let clip: Vec<Vec<Vec3>> = world
         .objects
         .par_iter()
@@ -244,25 +312,27 @@ fn setup(world: &World, view: &View) -> Vec<ScreenTriangle> {
         .par_iter()
         .map(|(object, range)| {
             let mesh = &world.objects[*object].mesh;
-            let clip = &clip[*object];
+            let (clip, varying) = (&clip[*object], varyings[*object]);
             let mut out = Vec::with_capacity(range.len());
             for t in range.clone() {
-                let [a, b, c] = mesh.triangles[t];
-                let v = [clip[a as usize], clip[b as usize], clip[c as usize]];
-                setup_triangle(view, v, *object as u32, t as u32, &mut out);
+                let corners = mesh.triangles[t].map(|i| i as usize);
+                let v = corners.map(|i| clip[i]);
+                let a = corners.map(|i| varying[i]);
+                setup_triangle(view, v, a, *object as u32, &mut out);
             }
             out
         })
         .collect();
-    chunks.concat()
+    ScreenTriangles { chunks }
 }
 
-/// Clips one triangle and pushes the screen triangles it yields (0, 1 or a fan of several).
+/// Clips one triangle (clip-space corners `v`, vertex varyings `a`) and pushes the screen
+/// triangles it yields (0, 1 or a fan of several).
 fn setup_triangle(
     view: &View,
     v: [Vec3; 3],
+    a: [Vec3; 3],
     object: u32,
-    triangle: u32,
     out: &mut Vec<ScreenTriangle>,
 ) {
     // Trivial reject: all three vertices outside one plane of the view volume.
@@ -291,7 +361,7 @@ fn setup_triangle(
     ];
     let inside_all = |p: Vec3| p.z >= NEAR && p.x.abs() <= GUARD * p.z && p.y.abs() <= GUARD * p.z;
     if v.iter().all(|&p| inside_all(p)) {
-        emit(view, corners, object, triangle, out);
+        emit(view, corners, a, object, out);
         return;
     }
     // Sutherland–Hodgman in homogeneous space: near plane, then the guard band.
@@ -306,13 +376,13 @@ fn setup_triangle(
     for plane in planes {
         let mut next = Vec::with_capacity(poly.len() + 1);
         for i in 0..poly.len() {
-            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-            let (da, db) = (plane(a.pos), plane(b.pos));
-            if da >= 0.0 {
-                next.push(a);
+            let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
+            let (dp, dq) = (plane(p.pos), plane(q.pos));
+            if dp >= 0.0 {
+                next.push(p);
             }
-            if (da >= 0.0) != (db >= 0.0) {
-                next.push(a.lerp(b, da / (da - db)));
+            if (dp >= 0.0) != (dq >= 0.0) {
+                next.push(p.lerp(q, dp / (dp - dq)));
             }
         }
         poly = next;
@@ -321,28 +391,27 @@ fn setup_triangle(
         }
     }
     for i in 1..poly.len() - 1 {
-        emit(view, [poly[0], poly[i], poly[i + 1]], object, triangle, out);
+        emit(view, [poly[0], poly[i], poly[i + 1]], a, object, out);
     }
 }
 
-/// Projects, snaps and orients a clipped triangle; drops it when it covers no pixel centre's box.
-fn emit(
-    view: &View,
-    v: [ClipVertex; 3],
-    object: u32,
-    triangle: u32,
-    out: &mut Vec<ScreenTriangle>,
-) {
+/// Projects, snaps and orients a clipped triangle of the original triangle with vertex varyings
+/// `a`, and sets up its interpolant planes; drops it when it covers no pixel centre's box.
+fn emit(view: &View, v: [ClipVertex; 3], a: [Vec3; 3], object: u32, out: &mut Vec<ScreenTriangle>) {
     let mut x = [0i32; 3];
     let mut y = [0i32; 3];
-    let mut inv_w = [0f32; 3];
-    let mut bary_w = [Vec2::ZERO; 3];
+    // (varying·1/w, 1/w) at each vertex; the varying of a clipped vertex is the original
+    // triangle's, interpolated at its barycentrics.
+    let mut values = [DVec4::ZERO; 3];
     for k in 0..3 {
         let p = view.clip_to_pixel(v[k].pos);
-        x[k] = (p.x * SUBPIXEL).round() as i32;
-        y[k] = (p.y * SUBPIXEL).round() as i32;
-        inv_w[k] = 1.0 / v[k].pos.z;
-        bary_w[k] = v[k].bary * inv_w[k];
+        x[k] = round(p.x * SUBPIXEL);
+        y[k] = round(p.y * SUBPIXEL);
+        let inv_w = 1.0 / v[k].pos.z as f64;
+        let b = v[k].bary.as_dvec2();
+        let [a0, a1, a2] = a.map(|a| a.as_dvec3());
+        let varying = a0 + (a1 - a0) * b.x + (a2 - a0) * b.y;
+        values[k] = (varying * inv_w).extend(inv_w);
     }
     let area = edge(x[0], y[0], x[1], y[1], x[2], y[2]);
     if area == 0 {
@@ -351,8 +420,7 @@ fn emit(
     if area < 0 {
         x.swap(1, 2);
         y.swap(1, 2);
-        inv_w.swap(1, 2);
-        bary_w.swap(1, 2);
+        values.swap(1, 2);
     }
     // Pixel i's centre is at i·256 + 128 in fixed point.
     let half = 1 << (SUBPIXEL_BITS - 1);
@@ -365,19 +433,50 @@ fn emit(
     if min_x > max_x || min_y > max_y {
         return;
     }
+    // Each interpolant is Σ values[k]·λk, where λk = (edge function opposite vertex k) / area
+    // is affine in the pixel centre: its plane follows from the edge functions' steps.
+    let (ref_x, ref_y) = (x[0] >> SUBPIXEL_BITS, y[0] >> SUBPIXEL_BITS);
+    let (ref_px, ref_py) = (
+        (ref_x << SUBPIXEL_BITS) + half,
+        (ref_y << SUBPIXEL_BITS) + half,
+    );
+    let inv_area = 1.0 / area.abs() as f64;
+    let (mut at_ref, mut per_x, mut per_y) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
+    for (k, &value) in values.iter().enumerate() {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        let at = edge(x[i], y[i], x[j], y[j], ref_px, ref_py) as f64 * inv_area;
+        let step_x = -((y[j] - y[i]) as f64) * SUBPIXEL as f64 * inv_area;
+        let step_y = (x[j] - x[i]) as f64 * SUBPIXEL as f64 * inv_area;
+        at_ref += value * at;
+        per_x += value * step_x;
+        per_y += value * step_y;
+    }
     out.push(ScreenTriangle {
         x,
         y,
-        inv_w,
-        bary_w,
-        inv_area: 1.0 / area.abs() as f32,
-        object,
-        triangle,
         min_x,
         max_x,
         min_y,
         max_y,
+        ref_x,
+        ref_y,
+        at_ref: at_ref.as_vec4(),
+        per_x: per_x.as_vec4(),
+        per_y: per_y.as_vec4(),
+        object,
     });
+}
+
+/// `v` rounded to the nearest integer, halves away from zero: `f32::round`, which on baseline
+/// x86-64 is a call into libm, done with a truncating conversion (|v| < 2^31).
+#[inline(always)]
+fn round(v: f32) -> i32 {
+    let whole = v as i32;
+    // The fractional part of a float is exact.
+    let fraction = v - whole as f32;
+    whole
+        .saturating_add((fraction >= 0.5) as i32)
+        .saturating_sub((fraction <= -0.5) as i32)
 }
 
 /// Twice the signed area of (a, b, p): positive when p is on the interior side of a→b.
@@ -386,34 +485,35 @@ fn edge(ax: i32, ay: i32, bx: i32, by: i32, px: i32, py: i32) -> i64 {
     (bx - ax) as i64 * (py - ay) as i64 - (by - ay) as i64 * (px - ax) as i64
 }
 
-/// Triangle indices per band of [`BAND_ROWS`] rows, in triangle order.
-fn bin(triangles: &[ScreenTriangle], height: u32) -> Vec<Vec<u32>> {
+/// Triangle ids per band of [`BAND_ROWS`] rows, in triangle order.
+fn bin(triangles: &ScreenTriangles, height: u32) -> Vec<Vec<u32>> {
     let bands = height.div_ceil(BAND_ROWS) as usize;
     let mut bins = vec![Vec::new(); bands];
-    for (i, t) in triangles.iter().enumerate() {
+    for (id, t) in triangles.iter() {
         for band in (t.min_y as u32 / BAND_ROWS)..=(t.max_y as u32 / BAND_ROWS) {
-            bins[band as usize].push(i as u32);
+            bins[band as usize].push(id);
         }
     }
     bins
 }
 
-/// Scan-converts the band's triangles in order, calling `fragment(index in band, triangle
-/// number, triangle, λ)`
-/// for every covered pixel centre; λ are the screen-space barycentric weights of the vertices.
+/// Scan-converts the band's triangles in order, calling `span(columns, triangle number,
+/// triangle, y)` for each run of covered pixel centres in row `y`; the columns count from the
+/// triangle's `min_x`. Rows `top..top + rows` of a `width`-pixel image form the band.
 #[inline]
 fn scan_band(
-    triangles: &[ScreenTriangle],
+    triangles: &ScreenTriangles,
     bin: &[u32],
     width: u32,
     top: u32,
     rows: u32,
-    mut fragment: impl FnMut(usize, u32, &ScreenTriangle, [f32; 3]),
+    mut span: impl FnMut(Range<usize>, u32, &ScreenTriangle, i32),
 ) {
+    debug_assert!(width > 0);
     let bottom = (top + rows) as i32 - 1;
     let half = 1 << (SUBPIXEL_BITS - 1);
     for &i in bin {
-        let t = &triangles[i as usize];
+        let t = triangles.get(i);
         let y0 = t.min_y.max(top as i32);
         let y1 = t.max_y.min(bottom);
         let (px, py) = (
@@ -425,7 +525,6 @@ fn scan_band(
         let mut row_start = [0i64; 3];
         let mut step_x = [0i64; 3];
         let mut step_y = [0i64; 3];
-        let mut bias = [0i64; 3];
         for k in 0..3 {
             let (a, b) = ((k + 1) % 3, (k + 2) % 3);
             let (dx, dy) = (t.x[b] - t.x[a], t.y[b] - t.y[a]);
@@ -433,16 +532,15 @@ fn scan_band(
             // edge is a top edge (horizontal, interior below) or a left edge (interior to the
             // right). Other edges get a bias of −1 so that "on the edge" tests as outside.
             let top_left = (dy == 0 && dx > 0) || dy < 0;
-            bias[k] = if top_left { 0 } else { -1 };
-            row_start[k] = edge(t.x[a], t.y[a], t.x[b], t.y[b], px, py) + bias[k];
+            let bias = if top_left { 0 } else { -1 };
+            row_start[k] = edge(t.x[a], t.y[a], t.x[b], t.y[b], px, py) + bias;
             step_x[k] = -(dy as i64) << SUBPIXEL_BITS;
             step_y[k] = (dx as i64) << SUBPIXEL_BITS;
         }
-        let inv_area = t.inv_area;
         let columns = (t.max_x - t.min_x) as i64;
         for y in y0..=y1 {
             // The covered span of this row, solved from the three edge functions (each is
-            // linear in x), so the loop below visits covered pixel centres only.
+            // linear in x): the centres where all three are ≥ 0.
             let (mut lo, mut hi) = (0i64, columns);
             for k in 0..3 {
                 let (e, s) = (row_start[k], step_x[k]);
@@ -456,29 +554,40 @@ fn scan_band(
                     hi = -1;
                 }
             }
-            let row = (y as u32 - top) as usize * width as usize + t.min_x as usize;
-            let mut e = [0i64; 3];
-            for k in 0..3 {
-                e[k] = row_start[k] + lo * step_x[k] - bias[k];
-            }
-            for n in lo..=hi {
+            if lo <= hi {
                 debug_assert!(
-                    e.iter().zip(bias).all(|(&e, b)| e + b >= 0),
+                    (0..3).all(|k| row_start[k] + lo * step_x[k] >= 0
+                        && row_start[k] + hi * step_x[k] >= 0),
                     "span solved wrongly"
                 );
-                let lambda = [
-                    e[0] as f32 * inv_area,
-                    e[1] as f32 * inv_area,
-                    e[2] as f32 * inv_area,
-                ];
-                fragment(row + n as usize, i, t, lambda);
-                e[0] += step_x[0];
-                e[1] += step_x[1];
-                e[2] += step_x[2];
+                span(lo as usize..hi as usize + 1, i, t, y);
             }
             for k in 0..3 {
                 row_start[k] += step_y[k];
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::round;
+
+    #[test]
+    fn round_is_f32_round() {
+        let special = [
+            0.5,
+            -0.5,
+            1.5,
+            -2.5,
+            0.499_999_97,
+            -0.499_999_97,
+            8_388_607.5,
+            1.0e9,
+        ];
+        let steps = (-40_000..40_000).map(|k| k as f32 * 0.031_25 + 0.003);
+        for v in special.into_iter().chain(steps) {
+            assert_eq!(round(v), v.round() as i32, "{v}");
         }
     }
 }

@@ -11,11 +11,11 @@ use rayon::prelude::*;
 use super::accel::SceneAccel;
 use super::camera::{NEAR, View};
 use super::frame::Frame;
+use super::materials::ObjectMaterials;
 use super::options::RenderOptions;
 use super::progress::{Cancelled, Progress};
 use super::ray::Ray;
 use super::shading::Lighting;
-use super::zbuffer::lighting;
 use crate::world::World;
 
 /// Deepest reflection recursion traced, whatever the options ask: the limit scene files
@@ -87,7 +87,8 @@ pub fn render_with_stats(
     let tracer = Tracer {
         world,
         accel,
-        lighting: lighting(world),
+        lighting: Lighting::new(world),
+        materials: ObjectMaterials::new(world),
         shadows: options.shadows,
         max_depth: options
             .max_depth
@@ -126,6 +127,7 @@ struct Tracer<'a> {
     world: &'a World,
     accel: &'a SceneAccel,
     lighting: Lighting<'a>,
+    materials: ObjectMaterials,
     shadows: bool,
     max_depth: u32,
 }
@@ -154,7 +156,8 @@ impl Tracer<'_> {
         }
         let origin = p + ng * self.accel.epsilon;
         let material = &object.material;
-        let mut color = self.lighting.shade(p, n, v, material, |_, light| {
+        let coefficients = &self.materials.one[hit.object as usize];
+        let mut color = self.lighting.shade(p, n, v, coefficients, |_, light| {
             if !self.shadows {
                 return true;
             }

@@ -1,0 +1,210 @@
+//! Lanes: `f32` arithmetic written once and run either on one value or on eight at a time.
+//!
+//! The lighting function and the maths under it are generic over [`Lanes`]. The ray tracer shades
+//! one hit at a time with `f32`, while the Z-buffer shades eight pixels or vertices at a time
+//! with [`F32x8`] (SIMD: two SSE registers on baseline x86-64, one AVX register where the build
+//! enables AVX, NEON on ARM). Every operation here is correctly rounded IEEE arithmetic, applied
+//! in the same order for both widths, so a lane of `F32x8` gives the same bits as `f32`.
+
+use std::ops::{Add, BitAnd, Div, Mul, Neg, Sub};
+
+use wide::{CmpGt, CmpLt, i32x8};
+
+/// Eight `f32` lanes.
+pub type F32x8 = wide::f32x8;
+
+/// Number of lanes in [`F32x8`].
+pub const WIDTH: usize = 8;
+
+/// `f32` values processed in lock step.
+pub trait Lanes:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// A per-lane condition.
+    type Mask: Copy + BitAnd<Output = Self::Mask>;
+
+    /// Every lane set to `value`.
+    fn splat(value: f32) -> Self;
+    /// Square root, correctly rounded.
+    fn sqrt(self) -> Self;
+    /// Larger of the two, lane by lane (neither may be NaN).
+    fn max(self, other: Self) -> Self;
+    /// Smaller of the two, lane by lane (neither may be NaN).
+    fn min(self, other: Self) -> Self;
+    /// Where `self > other`.
+    fn gt(self, other: Self) -> Self::Mask;
+    /// Where `self < other`.
+    fn lt(self, other: Self) -> Self::Mask;
+    /// `yes` where `mask` holds, else `no`.
+    fn select(mask: Self::Mask, yes: Self, no: Self) -> Self;
+    /// `value` where `mask` holds, else 0.
+    fn keep(mask: Self::Mask, value: Self) -> Self;
+    /// −`value` where `mask` holds, else `value`.
+    fn negate_where(mask: Self::Mask, value: Self) -> Self;
+    /// Whether `mask` holds in any lane.
+    fn any(mask: Self::Mask) -> bool;
+    /// For positive finite lanes: (e, m) with self = m·2^e, e an integer and m in [√½, √2).
+    /// Zero gives e = −127, m = 1.
+    fn split_exponent(self) -> (Self, Self);
+    /// self·2^n for integer-valued `n` in [−126, 127].
+    fn scale_by_pow2(self, n: Self) -> Self;
+}
+
+/// The bits of √½ as an f32: subtracting them from a float's bits and shifting right by 23 gives
+/// the exponent that leaves a mantissa in [√½, √2).
+const SQRT_HALF_BITS: i32 = 0x3f35_04f3;
+
+/// 1.5·2^23: adding and subtracting it rounds an f32 of magnitude below 2^22 to the nearest
+/// integer (ties to even), with no rounding-mode or libm dependence.
+pub const ROUND_MAGIC: f32 = 12_582_912.0;
+
+impl Lanes for f32 {
+    type Mask = bool;
+
+    #[inline(always)]
+    fn splat(value: f32) -> f32 {
+        value
+    }
+
+    #[inline(always)]
+    fn sqrt(self) -> f32 {
+        f32::sqrt(self)
+    }
+
+    #[inline(always)]
+    fn max(self, other: f32) -> f32 {
+        if self > other { self } else { other }
+    }
+
+    #[inline(always)]
+    fn min(self, other: f32) -> f32 {
+        if self < other { self } else { other }
+    }
+
+    #[inline(always)]
+    fn gt(self, other: f32) -> bool {
+        self > other
+    }
+
+    #[inline(always)]
+    fn lt(self, other: f32) -> bool {
+        self < other
+    }
+
+    #[inline(always)]
+    fn select(mask: bool, yes: f32, no: f32) -> f32 {
+        if mask { yes } else { no }
+    }
+
+    #[inline(always)]
+    fn keep(mask: bool, value: f32) -> f32 {
+        if mask { value } else { 0.0 }
+    }
+
+    #[inline(always)]
+    fn negate_where(mask: bool, value: f32) -> f32 {
+        if mask { -value } else { value }
+    }
+
+    #[inline(always)]
+    fn any(mask: bool) -> bool {
+        mask
+    }
+
+    #[inline(always)]
+    fn split_exponent(self) -> (f32, f32) {
+        let bits = self.to_bits() as i32;
+        let exponent = (bits - SQRT_HALF_BITS) >> 23;
+        (
+            exponent as f32,
+            f32::from_bits((bits - (exponent << 23)) as u32),
+        )
+    }
+
+    #[inline(always)]
+    fn scale_by_pow2(self, n: f32) -> f32 {
+        self * f32::from_bits(((n as i32 + 127) << 23) as u32)
+    }
+}
+
+impl Lanes for F32x8 {
+    type Mask = F32x8;
+
+    #[inline(always)]
+    fn splat(value: f32) -> F32x8 {
+        F32x8::splat(value)
+    }
+
+    #[inline(always)]
+    fn sqrt(self) -> F32x8 {
+        F32x8::sqrt(self)
+    }
+
+    #[inline(always)]
+    fn max(self, other: F32x8) -> F32x8 {
+        self.fast_max(other)
+    }
+
+    #[inline(always)]
+    fn min(self, other: F32x8) -> F32x8 {
+        self.fast_min(other)
+    }
+
+    #[inline(always)]
+    fn gt(self, other: F32x8) -> F32x8 {
+        self.cmp_gt(other)
+    }
+
+    #[inline(always)]
+    fn lt(self, other: F32x8) -> F32x8 {
+        self.cmp_lt(other)
+    }
+
+    #[inline(always)]
+    fn select(mask: F32x8, yes: F32x8, no: F32x8) -> F32x8 {
+        mask.blend(yes, no)
+    }
+
+    #[inline(always)]
+    fn keep(mask: F32x8, value: F32x8) -> F32x8 {
+        mask & value
+    }
+
+    #[inline(always)]
+    fn negate_where(mask: F32x8, value: F32x8) -> F32x8 {
+        value ^ (mask & F32x8::splat(-0.0))
+    }
+
+    #[inline(always)]
+    fn any(mask: F32x8) -> bool {
+        mask.any()
+    }
+
+    #[inline(always)]
+    fn split_exponent(self) -> (F32x8, F32x8) {
+        let bits: i32x8 = bytemuck::cast(self);
+        let exponent: i32x8 = (bits - i32x8::splat(SQRT_HALF_BITS)) >> 23;
+        (
+            exponent.round_float(),
+            bytemuck::cast(bits - (exponent << 23)),
+        )
+    }
+
+    #[inline(always)]
+    fn scale_by_pow2(self, n: F32x8) -> F32x8 {
+        let biased = n.fast_trunc_int() + i32x8::splat(127);
+        self * bytemuck::cast::<_, F32x8>(biased << 23)
+    }
+}
+
+/// Lanes from eight consecutive values.
+#[inline(always)]
+pub fn load(values: &[f32]) -> F32x8 {
+    let lanes: [f32; WIDTH] = values[..WIDTH].try_into().expect("eight values");
+    F32x8::from(lanes)
+}
