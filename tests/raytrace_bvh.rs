@@ -1,12 +1,16 @@
 //! The BVH against brute force: on random meshes and random rays it must report the same
-//! nearest hit and the same occlusion as testing every triangle; and its structure must keep
-//! every triangle in exactly one leaf, inside boxes that contain their children.
+//! nearest hit and the same occlusion as testing every triangle, and a packet of eight rays the
+//! same hits as each ray alone; and its structure must keep every triangle in exactly one leaf,
+//! inside boxes that contain their children.
 
 use glam::{Vec3, Vec3A};
 use proptest::prelude::*;
 use rastray::mesh::{Mesh, icosahedron};
 use rastray::render::bvh::{Bvh, MAX_TREE_DEPTH, Node};
 use rastray::render::intersect::Triangle;
+use rastray::render::lane_vec::V3;
+use rastray::render::lanes::{F32x8, WIDTH};
+use rastray::render::packet::{PacketHits, RayPacket};
 use rastray::render::ray::Ray;
 
 fn mesh_from(triangles: &[[Vec3; 3]]) -> Mesh {
@@ -79,6 +83,55 @@ proptest! {
             }
             let blocked = brute_nearest(&mesh, &ray, t_max).is_some();
             prop_assert_eq!(bvh.occluded(&ray, 0.0, t_max), blocked);
+        }
+    }
+}
+
+/// Eight rays as a packet: lane k is `rays[k]`, hits beyond `t_min`.
+fn packet_of(rays: &[(Vec3, Vec3)], t_min: f32) -> RayPacket {
+    let origins: Vec<Vec3> = rays.iter().map(|r| r.0).collect();
+    let dirs: Vec<Vec3> = rays.iter().map(|r| r.1).collect();
+    RayPacket::new(V3::gather(&origins), V3::gather(&dirs), F32x8::splat(t_min))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn a_packet_finds_what_each_of_its_rays_finds_alone(
+        tris in soup(),
+        eye in point(4.0),
+        towards in direction(),
+        spread in prop::sample::select(vec![0.0f32, 0.01, 0.2, 2.0]),
+        offsets in prop::collection::vec(point(1.0), WIDTH),
+        t_min in prop::sample::select(vec![0.0f32, 0.5]),
+    ) {
+        // From coherent primary rays (one eye, nearby directions) to no coherence at all.
+        let mesh = mesh_from(&tris);
+        let bvh = Bvh::build(&mesh);
+        let rays: Vec<(Vec3, Vec3)> = offsets
+            .iter()
+            .map(|&o| (eye, (towards + o * spread).try_normalize().unwrap_or(towards)))
+            .collect();
+        let mut hits = PacketHits::none();
+        bvh.intersect_packet(&packet_of(&rays, t_min), 7, &mut hits);
+        let (t, triangle, object) = (hits.t.to_array(), hits.triangle.to_array(), hits.object.to_array());
+        for (k, &(origin, dir)) in rays.iter().enumerate() {
+            let ray = Ray::new(origin, dir);
+            match bvh.intersect(&ray, t_min, f32::INFINITY) {
+                None => prop_assert_eq!(t[k], f32::INFINITY, "lane {} hit, the ray alone did not", k),
+                Some(h) => {
+                    // The same test on the same triangle, up to the order of a dot product's
+                    // additions; another triangle may win only at the same distance.
+                    prop_assert!((t[k] - h.t).abs() <= 1e-5 * h.t, "lane {}: {} vs {}", k, t[k], h.t);
+                    prop_assert_eq!(object[k], 7);
+                    if triangle[k] != h.triangle {
+                        let [a, b, c] = mesh.corners(triangle[k] as usize);
+                        let other = Triangle::new(a, b, c).intersect(&ray, t_min, f32::INFINITY);
+                        prop_assert!(other.is_some_and(|o| (o.t - h.t).abs() <= 1e-5 * h.t));
+                    }
+                }
+            }
         }
     }
 }

@@ -3,11 +3,12 @@
 
 use std::time::{Duration, Instant};
 
-use glam::{Vec3, Vec3A};
+use glam::Vec3;
 use rayon::prelude::*;
 
 use super::bvh::Bvh;
 use super::intersect::segment_meets_sphere;
+use super::packet::{PacketHits, RayPacket};
 use super::ray::Ray;
 use crate::mesh::Sphere;
 use crate::world::World;
@@ -38,8 +39,6 @@ pub struct Hit {
     pub object: u32,
     /// Triangle index in the object's mesh.
     pub triangle: u32,
-    /// Geometric normal of the triangle (not normalised).
-    pub normal: Vec3A,
 }
 
 /// Everything the ray tracer queries, built once per world.
@@ -101,11 +100,22 @@ impl SceneAccel {
                     v: h.v,
                     object: i as u32,
                     triangle: h.triangle,
-                    normal: h.normal,
                 });
             }
         }
         best
+    }
+
+    /// The nearest hit of each ray of `packet` over all objects.
+    pub fn intersect_packet(&self, packet: &RayPacket) -> PacketHits {
+        let mut hits = PacketHits::none();
+        for (i, o) in self.objects.iter().enumerate() {
+            let (center, radius) = (o.bounds.center, o.bounds.radius);
+            if packet.meets_sphere(center, radius, hits.t).any() {
+                o.bvh.intersect_packet(packet, i as u32, &mut hits);
+            }
+        }
+        hits
     }
 
     /// Whether anything lies on the segment from `from` to `to` (exclusive at both ends).

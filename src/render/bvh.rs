@@ -108,8 +108,6 @@ pub struct BvhHit {
     pub v: f32,
     /// Index of the triangle in the mesh.
     pub triangle: u32,
-    /// Geometric normal of the triangle (e1 × e2, not normalised).
-    pub normal: Vec3A,
 }
 
 /// A BVH over one mesh. Invariant: every triangle of the mesh is in exactly one leaf.
@@ -189,7 +187,6 @@ impl Bvh {
                     u: h.u,
                     v: h.v,
                     triangle: self.ids[k],
-                    normal: tri.n,
                 });
             }
             false

@@ -7,7 +7,7 @@ use super::ray::Ray;
 
 /// A ray is treated as parallel to a triangle's plane when |cos| of its angle with the plane's
 /// normal is at most this: the hit point would be numerically meaningless.
-const PARALLEL_COS: f32 = 1.0e-6;
+pub(crate) const PARALLEL_COS: f32 = 1.0e-6;
 
 /// A triangle prepared for intersection: one 64-byte cache line.
 #[derive(Debug, Clone, Copy, PartialEq)]

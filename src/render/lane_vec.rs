@@ -33,6 +33,16 @@ impl<L: Lanes> V3<L> {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
 
+    /// Cross product, lane by lane.
+    #[inline(always)]
+    pub fn cross(self, o: V3<L>) -> V3<L> {
+        V3::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
+    }
+
     /// Squared length.
     #[inline(always)]
     pub fn length_squared(self) -> L {

@@ -13,6 +13,7 @@ pub mod lane_vec;
 pub mod lanes;
 pub mod materials;
 mod options;
+pub mod packet;
 pub mod phong;
 pub mod pow;
 pub mod progress;

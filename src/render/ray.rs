@@ -4,7 +4,7 @@ use glam::{Vec3, Vec3A};
 
 /// Components of a direction smaller than this are nudged to it (keeping their sign) before the
 /// reciprocal is taken, so box tests never multiply 0 by ∞.
-const TINY: f32 = 1.0e-20;
+pub(crate) const TINY: f32 = 1.0e-20;
 
 /// A half-line `origin + t·dir`, t ≥ 0.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,7 +1,11 @@
 //! Backward (Whitted) ray tracing: one primary ray per pixel centre, the shared lighting function
 //! at the nearest hit with shadow rays deciding which lights count, and mirror reflection
-//! recursing to a maximum depth. Rows are traced in parallel; every pixel depends only on its own
-//! rays, so the image is the same for any number of threads.
+//! recursing to a maximum depth.
+//!
+//! Primary rays go in packets of 4×2 neighbouring pixels: traced through the BVH together and
+//! lit together, eight lanes at a time. Shadow and reflection rays, which scatter, go one by
+//! one. Pairs of rows are traced in parallel; every pixel depends only on its own rays, so the
+//! image is the same for any number of threads.
 
 use std::ops::Add;
 
@@ -11,8 +15,11 @@ use rayon::prelude::*;
 use super::accel::SceneAccel;
 use super::camera::{NEAR, View};
 use super::frame::Frame;
+use super::lane_vec::V3;
+use super::lanes::{F32x8, WIDTH};
 use super::materials::ObjectMaterials;
 use super::options::RenderOptions;
+use super::packet::RayPacket;
 use super::progress::{Cancelled, Progress};
 use super::ray::Ray;
 use super::shading::Lighting;
@@ -21,6 +28,11 @@ use crate::world::World;
 /// Deepest reflection recursion traced, whatever the options ask: the limit scene files
 /// already have, which also bounds the recursion's stack use.
 pub const MAX_REFLECTION_DEPTH: u32 = crate::scene::MAX_DEPTH;
+
+/// Primary rays are traced in packets of [`WIDTH`]: this many columns …
+const PACKET_COLUMNS: usize = 4;
+/// … by this many rows.
+const PACKET_ROWS: usize = WIDTH / PACKET_COLUMNS;
 
 /// How many rays of each kind a render cast.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -98,19 +110,27 @@ pub fn render_with_stats(
     let width = view.width as usize;
     let mut pixels = vec![Vec3::ZERO; width * view.height as usize];
     let stats = pixels
-        .par_chunks_mut(width)
+        .par_chunks_mut(width * PACKET_ROWS)
         .enumerate()
-        .map(|(j, row)| {
+        .map(|(pair, rows)| {
             progress.check()?;
             let mut stats = RayStats::default();
-            for (i, pixel) in row.iter_mut().enumerate() {
-                let dir = view.ray_direction(i as f32 + 0.5, j as f32 + 0.5);
-                // Start where the rasterizer's near plane cuts the ray, so both see the same.
-                let t_min = NEAR / dir.dot(view.forward);
-                stats.primary += 1;
-                *pixel = tracer.trace(&Ray::new(view.eye, dir), t_min, 0, &mut stats);
+            let (top, height) = (pair * PACKET_ROWS, rows.len() / width);
+            for left in (0..width).step_by(PACKET_COLUMNS) {
+                // Lane k is pixel (left + k % 4, top + k / 4); lanes past the image's right
+                // edge or last row repeat a pixel inside it and are not written.
+                let column = |k: usize| (left + k % PACKET_COLUMNS).min(width - 1);
+                let row = |k: usize| (k / PACKET_COLUMNS).min(height - 1);
+                let real: [bool; WIDTH] = std::array::from_fn(|k| {
+                    left + k % PACKET_COLUMNS < width && k / PACKET_COLUMNS < height
+                });
+                let pixel = std::array::from_fn(|k| (column(k) as u32, (top + row(k)) as u32));
+                let colors = tracer.trace_primary(view, pixel, real, &mut stats);
+                for k in (0..WIDTH).filter(|&k| real[k]) {
+                    rows[row(k) * width + column(k)] = colors[k];
+                }
             }
-            progress.advance(1);
+            progress.advance(height as u64);
             Ok(stats)
         })
         .try_reduce(RayStats::default, |a, b| Ok(a + b))?;
@@ -132,46 +152,149 @@ struct Tracer<'a> {
     max_depth: u32,
 }
 
+/// The surface at a ray's hit.
+struct Surface {
+    /// The hit point, world units.
+    p: Vec3,
+    /// The interpolated shading normal, unit length (zero on a degenerate triangle).
+    n: Vec3,
+    /// Where secondary rays start: `p` lifted off the surface, on the side the ray came from.
+    origin: Vec3,
+}
+
 impl Tracer<'_> {
+    /// The surface where a ray along `d` hits triangle `triangle` of object `object` at
+    /// barycentrics (u, v): position and normal interpolated exactly as the Phong fragment
+    /// stage interpolates them.
+    fn surface(&self, object: u32, triangle: u32, u: f32, v: f32, d: Vec3) -> Surface {
+        let mesh = &self.world.objects[object as usize].mesh;
+        let [a, b, c] = mesh.triangles[triangle as usize].map(|k| k as usize);
+        let w = [1.0 - u - v, u, v];
+        let p = mesh.positions[a] * w[0] + mesh.positions[b] * w[1] + mesh.positions[c] * w[2];
+        let n = (mesh.normals[a] * w[0] + mesh.normals[b] * w[1] + mesh.normals[c] * w[2])
+            .normalize_or_zero();
+        // The geometric normal, turned toward where the ray came from; the offset is scaled to
+        // the scene.
+        let [pa, pb, pc] = [a, b, c].map(|k| mesh.positions[k]);
+        let mut ng = (pb - pa).cross(pc - pa).normalize_or_zero();
+        if ng.dot(d) > 0.0 {
+            ng = -ng;
+        }
+        Surface {
+            p,
+            n,
+            origin: p + ng * self.accel.epsilon,
+        }
+    }
+
+    /// Colour of the eight primary rays through the centres of `pixel` (column, row); lanes
+    /// that are not `real` are computed but not counted.
+    fn trace_primary(
+        &self,
+        view: &View,
+        pixel: [(u32, u32); WIDTH],
+        real: [bool; WIDTH],
+        stats: &mut RayStats,
+    ) -> [Vec3; WIDTH] {
+        let x = F32x8::from(pixel.map(|(i, _)| i as f32 + 0.5));
+        let y = F32x8::from(pixel.map(|(_, j)| j as f32 + 0.5));
+        let dir = view.pixel_direction(x, y).normalize_or_zero();
+        // Start where the rasterizer's near plane cuts each ray, so both see the same.
+        let t_min = F32x8::splat(NEAR) / dir.dot(V3::splat(view.forward));
+        let packet = RayPacket::new(V3::splat(view.eye), dir, t_min);
+        stats.primary += real.iter().filter(|&&r| r).count() as u64;
+        let hits = self.accel.intersect_packet(&packet);
+        let real_lanes = (0..WIDTH)
+            .filter(|&k| real[k])
+            .fold(0u32, |m, k| m | 1 << k);
+        let hit_lanes = hits.hit().move_mask() as u32 & real_lanes;
+        let Some(first) = (0..WIDTH).find(|&k| hit_lanes & 1 << k != 0) else {
+            return [self.world.background; WIDTH];
+        };
+        // Lanes without a hit borrow the first hit's surface, so every lane computes with
+        // finite values; their colour is the background.
+        let source = |k: usize| if hit_lanes & 1 << k != 0 { k } else { first };
+        let (objects, triangles) = (hits.object.to_array(), hits.triangle.to_array());
+        let (u, v) = (hits.u.to_array(), hits.v.to_array());
+        let dirs = dir.to_vec3s();
+        let surfaces: [Surface; WIDTH] = std::array::from_fn(|k| {
+            let s = source(k);
+            self.surface(objects[s], triangles[s], u[s], v[s], dirs[k])
+        });
+        let object: [u32; WIDTH] = std::array::from_fn(|k| objects[source(k)]);
+        let gathered;
+        let material = if object.iter().all(|&o| o == object[0]) {
+            &self.materials.lanes[object[0] as usize]
+        } else {
+            gathered = self.materials.gather(&object);
+            &gathered
+        };
+        let p = V3::gather(&surfaces.each_ref().map(|s| s.p));
+        let n = V3::gather(&surfaces.each_ref().map(|s| s.n));
+        let lit = self
+            .lighting
+            .shade_lanes(p, n, -dir, material, |_, light, facing| {
+                if !self.shadows {
+                    return facing;
+                }
+                let wanted = facing.move_mask() as u32 & hit_lanes;
+                let reached: [u32; WIDTH] = std::array::from_fn(|k| {
+                    if wanted & 1 << k == 0 {
+                        return 0;
+                    }
+                    stats.shadow += 1;
+                    let open = !self.accel.occluded(surfaces[k].origin, light.position);
+                    if open { u32::MAX } else { 0 }
+                });
+                bytemuck::cast(reached)
+            })
+            .to_vec3s();
+        std::array::from_fn(|k| {
+            if hit_lanes & 1 << k == 0 {
+                return self.world.background;
+            }
+            let s = &surfaces[k];
+            lit[k] + self.reflection(objects[k], s, dirs[k], 0, stats)
+        })
+    }
+
     /// Colour seen along `ray` beyond `t_min`; `depth` counts reflections so far.
     fn trace(&self, ray: &Ray, t_min: f32, depth: u32, stats: &mut RayStats) -> Vec3 {
         let Some(hit) = self.accel.intersect(ray, t_min, f32::INFINITY) else {
             return self.world.background;
         };
-        let object = &self.world.objects[hit.object as usize];
-        let mesh = &object.mesh;
-        let [a, b, c] = mesh.triangles[hit.triangle as usize].map(|k| k as usize);
-        let w = [1.0 - hit.u - hit.v, hit.u, hit.v];
-        // Interpolate position and normal exactly as the Phong fragment stage does.
-        let p = mesh.positions[a] * w[0] + mesh.positions[b] * w[1] + mesh.positions[c] * w[2];
-        let n = (mesh.normals[a] * w[0] + mesh.normals[b] * w[1] + mesh.normals[c] * w[2])
-            .normalize_or_zero();
         let d = Vec3::from(ray.dir);
-        let v = -d;
-        // Secondary rays leave from a point lifted off the surface, on the side the ray came
-        // from, by an offset scaled to the scene.
-        let mut ng = Vec3::from(hit.normal.normalize_or_zero());
-        if ng.dot(d) > 0.0 {
-            ng = -ng;
-        }
-        let origin = p + ng * self.accel.epsilon;
-        let material = &object.material;
-        let coefficients = &self.materials.one[hit.object as usize];
-        let mut color = self.lighting.shade(p, n, v, coefficients, |_, light| {
+        let s = self.surface(hit.object, hit.triangle, hit.u, hit.v, d);
+        let material = &self.materials.one[hit.object as usize];
+        let lit = self.lighting.shade(s.p, s.n, -d, material, |_, light| {
             if !self.shadows {
                 return true;
             }
             stats.shadow += 1;
-            !self.accel.occluded(origin, light.position)
+            !self.accel.occluded(s.origin, light.position)
         });
-        if depth < self.max_depth && material.reflection > 0.0 {
-            // The shading normal, turned toward the viewer as the lighting function does.
-            let n = if n.dot(v) < 0.0 { -n } else { n };
-            let r = d - 2.0 * n * d.dot(n);
-            stats.reflection += 1;
-            let reflected = Ray::new(origin, r.normalize_or(d));
-            color += material.reflection * self.trace(&reflected, 0.0, depth + 1, stats);
+        lit + self.reflection(hit.object, &s, d, depth, stats)
+    }
+
+    /// What the mirror of object `object` at surface `s`, hit along `d` by a ray of reflection
+    /// depth `depth`, adds: Kr times the colour of the reflected ray, until the depth limit.
+    fn reflection(
+        &self,
+        object: u32,
+        s: &Surface,
+        d: Vec3,
+        depth: u32,
+        stats: &mut RayStats,
+    ) -> Vec3 {
+        let reflection = self.world.objects[object as usize].material.reflection;
+        if depth >= self.max_depth || reflection <= 0.0 {
+            return Vec3::ZERO;
         }
-        color
+        // The shading normal, turned toward the viewer as the lighting function does.
+        let n = if s.n.dot(-d) < 0.0 { -s.n } else { s.n };
+        let r = d - 2.0 * n * d.dot(n);
+        stats.reflection += 1;
+        let reflected = Ray::new(s.origin, r.normalize_or(d));
+        reflection * self.trace(&reflected, 0.0, depth + 1, stats)
     }
 }
