@@ -1,11 +1,13 @@
 //! Times repeated renders of one scene: `cargo run --release --example frame_time -- SCENE WxH [ALGO] [REPS]`.
-//! Prints the minimum and median wall time per frame; a quick check while working on a hot path.
+//! For each algorithm, prints the minimum, median, mean and maximum wall time per frame twice:
+//! rendering into one reused frame (a live preview's steady state), and into a new frame each
+//! time (a one-off render, which also faults in the fresh image's memory).
 
 use std::path::Path;
 use std::time::Instant;
 
-use rastray::render::{Algorithm, Progress, RenderOptions, Size};
-use rastray::{World, render};
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Size};
+use rastray::{World, render, render_into};
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -34,19 +36,41 @@ fn main() -> anyhow::Result<()> {
     );
     for algorithm in algorithms {
         let options = RenderOptions::new(algorithm, size.width, size.height);
-        let mut times: Vec<f64> = (0..reps)
-            .map(|_| {
-                let start = Instant::now();
-                render(&world, &scene.camera, &options, &Progress::new()).expect("render");
-                start.elapsed().as_secs_f64() * 1000.0
-            })
-            .collect();
-        times.sort_by(f64::total_cmp);
-        println!(
-            "{algorithm:>8}: min {:.2} ms, median {:.2} ms",
-            times[0],
-            times[times.len() / 2]
-        );
+        let mut frame = Frame::default();
+        let reused = time(reps, || {
+            render_into(
+                &world,
+                &scene.camera,
+                &options,
+                &Progress::new(),
+                &mut frame,
+            )
+            .expect("render");
+        });
+        let fresh = time(reps, || {
+            render(&world, &scene.camera, &options, &Progress::new()).expect("render");
+        });
+        println!("{algorithm:>8}: reused frame {reused}");
+        println!("{:>8}  new frame    {fresh}", "");
     }
     Ok(())
+}
+
+/// Runs `render` `reps` times; the minimum, median, mean and maximum, in milliseconds.
+fn time(reps: usize, mut render: impl FnMut()) -> String {
+    let mut times: Vec<f64> = (0..reps)
+        .map(|_| {
+            let start = Instant::now();
+            render();
+            start.elapsed().as_secs_f64() * 1000.0
+        })
+        .collect();
+    let mean = times.iter().sum::<f64>() / times.len() as f64;
+    times.sort_by(f64::total_cmp);
+    format!(
+        "min {:.2} ms, median {:.2} ms, mean {mean:.2} ms, max {:.2} ms",
+        times[0],
+        times[times.len() / 2],
+        times[times.len() - 1]
+    )
 }

@@ -5,6 +5,7 @@ mod common;
 
 use glam::{Affine3A, Quat, Vec3};
 use rastray::mesh::{FaceList, with_normals};
+use rastray::render::fragments::Fragments;
 use rastray::render::lane_vec::V3;
 use rastray::render::raster::coverage_counts;
 use rastray::render::{Algorithm, View};
@@ -230,18 +231,16 @@ material = { color = [0.5, 0.5, 0.5] }
     }
     // Depth check against the analytic exit distance of each ray from the box.
     let world = common::world(&scene);
-    let mut depths = vec![0.0f32; 64 * 48];
     let normals: Vec<&[Vec3]> = world.objects.iter().map(|o| &o.mesh.normals[..]).collect();
     let progress = rastray::render::Progress::new();
-    rastray::render::raster::draw(&world, &view, &progress, &normals, |fragments, out| {
+    let mut drawn = vec![Vec3::NAN; 64 * 48];
+    let write_depth = |fragments: &Fragments, row: &mut [Vec3]| {
         let depth = fragments.depth;
-        fragments.write(V3::new(depth, depth, depth), out)
-    })
-    .expect("draw")
-    .pixels
-    .iter()
-    .enumerate()
-    .for_each(|(i, d)| depths[i] = d.x);
+        fragments.write(V3::new(depth, depth, depth), row)
+    };
+    rastray::render::raster::draw(&world, &view, &progress, &normals, write_depth, &mut drawn)
+        .expect("draw");
+    let depths: Vec<f32> = drawn.iter().map(|d| d.x).collect();
     for y in 0..48u32 {
         for x in 0..64u32 {
             let d = view.ray_direction(x as f32 + 0.5, y as f32 + 0.5);

@@ -29,23 +29,24 @@ pub struct RayStats {
     pub bvh_build: Duration,
 }
 
-/// Renders with the ray tracer, building its BVH first, and returns the ray counts and the
-/// build time.
+/// Renders with the ray tracer into `frame` (its buffer reused when it has the view's size),
+/// building its BVH first, and returns the ray counts and the build time.
 pub fn render_ray_with_stats(
     world: &World,
     view: &View,
     options: &RenderOptions,
     progress: &Progress,
-) -> Result<(Frame, RayStats), Cancelled> {
+    frame: &mut Frame,
+) -> Result<RayStats, Cancelled> {
     let accel = SceneAccel::build(world);
-    let (frame, rays) = raytrace::render_with_stats(&accel, world, view, options, progress)?;
-    let stats = RayStats {
+    frame.reshape(view.width, view.height);
+    let rays = raytrace::trace_into(&accel, world, view, options, progress, &mut frame.pixels)?;
+    Ok(RayStats {
         primary: rays.primary,
         shadow: rays.shadow,
         reflection: rays.reflection,
         bvh_build: accel.build_time,
-    };
-    Ok((frame, stats))
+    })
 }
 
 /// One Z-buffer shading on one scene.
@@ -118,10 +119,11 @@ pub fn measure(
     let view = View::new(&scene.camera, size.width, size.height);
     let face_area = total_face_area(world, &view);
     let mut raster = Vec::new();
+    let mut frame = Frame::default();
     for algorithm in [Algorithm::Gouraud, Algorithm::Phong] {
         let options = RenderOptions::new(algorithm, size.width, size.height);
         let times = (0..reps.max(1))
-            .map(|_| time_render(world, &scene.camera, &options))
+            .map(|_| time_render(world, &scene.camera, &options, &mut frame))
             .collect::<Result<Vec<_>, _>>()?;
         let (median_ms, _, _) = summarize(&times);
         raster.push(RasterRate {
@@ -136,9 +138,9 @@ pub fn measure(
     let mut runs = Vec::new();
     for _ in 0..reps.max(1) {
         let started = Instant::now();
-        let (frame, stats) = render_ray_with_stats(world, &view, &options, &Progress::new())?;
+        let stats = render_ray_with_stats(world, &view, &options, &Progress::new(), &mut frame)?;
         runs.push((started.elapsed(), stats));
-        std::hint::black_box(frame);
+        std::hint::black_box(&frame.pixels);
     }
     runs.sort_by_key(|r| r.0);
     let (time, stats) = runs[runs.len() / 2];

@@ -3,7 +3,7 @@
 use glam::Vec3;
 
 /// A `width`×`height` image of linear RGB, row-major from the top-left pixel.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Frame {
     pub width: u32,
     pub height: u32,
@@ -27,25 +27,25 @@ impl Frame {
         self.pixels[y as usize * self.width as usize + x as usize]
     }
 
+    /// Makes this a `width`×`height` frame whose pixels are about to be overwritten: the buffer
+    /// is kept when it has that size already, else replaced by zeroed memory, whose pages the
+    /// render threads then fault in as they write, in parallel.
+    pub fn reshape(&mut self, width: u32, height: u32) {
+        let len = width as usize * height as usize;
+        if self.pixels.len() != len {
+            self.pixels = bytemuck::zeroed_vec(len);
+        }
+        (self.width, self.height) = (width, height);
+    }
+
     /// Averages each `n`×`n` block into one pixel: the box filter of N×N supersampling.
     pub fn downsample(self, n: u32) -> Frame {
         if n <= 1 {
             return self;
         }
         let (w, h) = (self.width / n, self.height / n);
-        let scale = 1.0 / (n * n) as f32;
-        let mut pixels = Vec::with_capacity(w as usize * h as usize);
-        for y in 0..h {
-            for x in 0..w {
-                let mut sum = Vec3::ZERO;
-                for sy in 0..n {
-                    for sx in 0..n {
-                        sum += self.pixel(x * n + sx, y * n + sy);
-                    }
-                }
-                pixels.push(sum * scale);
-            }
-        }
+        let mut pixels = vec![Vec3::ZERO; w as usize * h as usize];
+        box_filter(&self.pixels, self.width, n, &mut pixels);
         Frame {
             width: w,
             height: h,
@@ -64,6 +64,24 @@ impl Frame {
     /// The 8-bit sRGB colour of one pixel.
     pub fn srgb8_at(&self, x: u32, y: u32) -> [u8; 3] {
         self.pixel(x, y).to_array().map(encode_srgb)
+    }
+}
+
+/// Averages each `n`×`n` block of `samples`, an image `width` samples wide, into one pixel of
+/// `out`, an image `width / n` pixels wide and as many rows as `out` holds.
+pub fn box_filter(samples: &[Vec3], width: u32, n: u32, out: &mut [Vec3]) {
+    let (width, n) = (width as usize, n as usize);
+    let out_width = width / n;
+    let scale = 1.0 / (n * n) as f32;
+    for (y, row) in out.chunks_mut(out_width).enumerate() {
+        for (x, pixel) in row.iter_mut().enumerate() {
+            let mut sum = Vec3::ZERO;
+            for sy in 0..n {
+                let start = (y * n + sy) * width + x * n;
+                sum += samples[start..start + n].iter().copied().sum::<Vec3>();
+            }
+            *pixel = sum * scale;
+        }
     }
 }
 

@@ -15,12 +15,32 @@ use crate::world::World;
 
 /// Renders `world` through `view` (one sample per pixel).
 pub fn render(world: &World, view: &View, progress: &Progress) -> Result<Frame, Cancelled> {
+    let mut frame = Frame::default();
+    frame.reshape(view.width, view.height);
+    render_into(world, view, progress, &mut frame.pixels)?;
+    Ok(frame)
+}
+
+/// Renders `world` through `view` into `out` (`view.width`×`view.height` pixels).
+pub fn render_into(
+    world: &World,
+    view: &View,
+    progress: &Progress,
+    out: &mut [Vec3],
+) -> Result<(), Cancelled> {
     let colors = vertex_colors(world, view);
     let colors: Vec<&[Vec3]> = colors.iter().map(Vec::as_slice).collect();
     // Fragment stage: the interpolated colour is the pixel's colour.
-    draw(world, view, progress, &colors, |fragments, out| {
-        fragments.write(fragments.varying, out);
-    })
+    draw(
+        world,
+        view,
+        progress,
+        &colors,
+        |fragments, row| {
+            fragments.write(fragments.varying, row);
+        },
+        out,
+    )
 }
 
 /// Vertex stage: every vertex lit with its normal, seen from the eye; `[object][vertex]`.

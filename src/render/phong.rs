@@ -14,26 +14,46 @@ use crate::world::World;
 
 /// Renders `world` through `view` (one sample per pixel).
 pub fn render(world: &World, view: &View, progress: &Progress) -> Result<Frame, Cancelled> {
+    let mut frame = Frame::default();
+    frame.reshape(view.width, view.height);
+    render_into(world, view, progress, &mut frame.pixels)?;
+    Ok(frame)
+}
+
+/// Renders `world` through `view` into `out` (`view.width`×`view.height` pixels).
+pub fn render_into(
+    world: &World,
+    view: &View,
+    progress: &Progress,
+    out: &mut [Vec3],
+) -> Result<(), Cancelled> {
     let lighting = Lighting::new(world);
     let materials = ObjectMaterials::new(world);
     // The varying is the vertex normal. The surface point is found on the pixel's ray at the
     // interpolated depth, which is the perspective-correct interpolated position, and the very
     // point the ray tracer's primary ray meets.
     let normals: Vec<&[Vec3]> = world.objects.iter().map(|o| &o.mesh.normals[..]).collect();
-    draw(world, view, progress, &normals, |fragments, out| {
-        let x = F32x8::from(fragments.x.map(|c| c as f32 + 0.5));
-        let ray = view.pixel_direction(x, F32x8::splat(fragments.y as f32 + 0.5));
-        let p = V3::splat(view.eye) + ray * fragments.depth;
-        let v = (-ray).normalize_or_zero();
-        let n = fragments.varying.normalize_or_zero();
-        let gathered;
-        let material = if fragments.one_object {
-            &materials.lanes[fragments.object[0] as usize]
-        } else {
-            gathered = materials.gather(&fragments.object);
-            &gathered
-        };
-        let color = lighting.shade_lanes(p, n, v, material, |_, _, facing| facing);
-        fragments.write(color, out);
-    })
+    draw(
+        world,
+        view,
+        progress,
+        &normals,
+        |fragments, row| {
+            let x = F32x8::from(fragments.x.map(|c| c as f32 + 0.5));
+            let ray = view.pixel_direction(x, F32x8::splat(fragments.y as f32 + 0.5));
+            let p = V3::splat(view.eye) + ray * fragments.depth;
+            let v = (-ray).normalize_or_zero();
+            let n = fragments.varying.normalize_or_zero();
+            let gathered;
+            let material = if fragments.one_object {
+                &materials.lanes[fragments.object[0] as usize]
+            } else {
+                gathered = materials.gather(&fragments.object);
+                &gathered
+            };
+            let color = lighting.shade_lanes(p, n, v, material, |_, _, facing| facing);
+            fragments.write(color, row);
+        },
+        out,
+    )
 }

@@ -19,7 +19,6 @@ use rayon::prelude::*;
 
 use super::camera::{NEAR, View};
 use super::fragments::{Fragments, Packer};
-use super::frame::Frame;
 use super::lanes::{F32x8, WIDTH, load};
 use super::progress::{Cancelled, Progress};
 use crate::world::World;
@@ -129,7 +128,8 @@ struct BandBuffers {
     id: Vec<u32>,
 }
 
-/// Draws `world` seen through `view`. Each band of rows is scan-converted with a depth test on
+/// Draws `world` seen through `view` into `out` (`view.width`×`view.height` pixels, every one
+/// written). Each band of rows is scan-converted with a depth test on
 /// 1/w, keeping the nearest triangle per pixel centre; then the covered pixels of each row are
 /// handed to `shade` eight at a time as [`Fragments`], with `varyings[object][vertex]`
 /// interpolated perspective-correctly, and `shade` writes their colours into the row. Uncovered
@@ -141,15 +141,13 @@ pub fn draw(
     progress: &Progress,
     varyings: &[&[Vec3]],
     shade: impl Fn(&Fragments, &mut [Vec3]) + Sync,
-) -> Result<Frame, Cancelled> {
+    out: &mut [Vec3],
+) -> Result<(), Cancelled> {
     let (width, height) = (view.width, view.height);
+    debug_assert_eq!(out.len(), width as usize * height as usize);
     let triangles = setup(world, view, varyings);
     let bins = bin(&triangles, height);
-    // Zeroed memory comes as untouched pages from the system, so the bands, which write every
-    // pixel, fault their pages in in parallel rather than waiting for one thread to fill them.
-    let mut pixels = bytemuck::zeroed_vec::<Vec3>(width as usize * height as usize);
-    pixels
-        .par_chunks_mut((BAND_ROWS * width) as usize)
+    out.par_chunks_mut((BAND_ROWS * width) as usize)
         .zip(bins.par_iter())
         .enumerate()
         .try_for_each_init(BandBuffers::default, |buffers, (band, (rows, bin))| {
@@ -183,12 +181,7 @@ pub fn draw(
             }
             progress.advance(band_rows as u64);
             Ok(())
-        })?;
-    Ok(Frame {
-        width,
-        height,
-        pixels,
-    })
+        })
 }
 
 /// Shades row `y`, whose pixels were drawn by screen triangles `ids` (number + 1; 0 = none):

@@ -95,6 +95,22 @@ pub fn render_with_stats(
     options: &RenderOptions,
     progress: &Progress,
 ) -> Result<(Frame, RayStats), Cancelled> {
+    let mut frame = Frame::default();
+    frame.reshape(view.width, view.height);
+    let stats = trace_into(accel, world, view, options, progress, &mut frame.pixels)?;
+    Ok((frame, stats))
+}
+
+/// Traces `world` through `view` into `out` (`view.width`×`view.height` pixels), with an
+/// acceleration structure built from `world`; returns the rays cast.
+pub fn trace_into(
+    accel: &SceneAccel,
+    world: &World,
+    view: &View,
+    options: &RenderOptions,
+    progress: &Progress,
+    out: &mut [Vec3],
+) -> Result<RayStats, Cancelled> {
     debug_assert_eq!(accel.objects.len(), world.objects.len());
     let tracer = Tracer {
         world,
@@ -108,9 +124,8 @@ pub fn render_with_stats(
             .min(MAX_REFLECTION_DEPTH),
     };
     let width = view.width as usize;
-    let mut pixels = vec![Vec3::ZERO; width * view.height as usize];
-    let stats = pixels
-        .par_chunks_mut(width * PACKET_ROWS)
+    debug_assert_eq!(out.len(), width * view.height as usize);
+    out.par_chunks_mut(width * PACKET_ROWS)
         .enumerate()
         .map(|(pair, rows)| {
             progress.check()?;
@@ -133,13 +148,7 @@ pub fn render_with_stats(
             progress.advance(height as u64);
             Ok(stats)
         })
-        .try_reduce(RayStats::default, |a, b| Ok(a + b))?;
-    let frame = Frame {
-        width: view.width,
-        height: view.height,
-        pixels,
-    };
-    Ok((frame, stats))
+        .try_reduce(RayStats::default, |a, b| Ok(a + b))
 }
 
 /// What every ray of one render shares.
