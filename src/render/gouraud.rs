@@ -15,10 +15,9 @@ use crate::world::World;
 
 /// Renders `world` through `view` (one sample per pixel).
 pub fn render(world: &World, view: &View, progress: &Progress) -> Result<Frame, Cancelled> {
-    let mut frame = Frame::default();
-    frame.reshape(view.width, view.height);
-    render_into(world, view, progress, &mut frame.pixels)?;
-    Ok(frame)
+    Frame::drawn(view.width, view.height, |out| {
+        render_into(world, view, progress, out)
+    })
 }
 
 /// Renders `world` through `view` into `out` (`view.width`×`view.height` pixels).

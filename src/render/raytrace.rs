@@ -95,9 +95,11 @@ pub fn render_with_stats(
     options: &RenderOptions,
     progress: &Progress,
 ) -> Result<(Frame, RayStats), Cancelled> {
-    let mut frame = Frame::default();
-    frame.reshape(view.width, view.height);
-    let stats = trace_into(accel, world, view, options, progress, &mut frame.pixels)?;
+    let mut stats = RayStats::default();
+    let frame = Frame::drawn(view.width, view.height, |out| {
+        stats = trace_into(accel, world, view, options, progress, out)?;
+        Ok(())
+    })?;
     Ok((frame, stats))
 }
 
