@@ -49,9 +49,10 @@ pub fn markdown(results: &[Measurement], config: &BenchConfig, machine: &str) ->
         if config.quick { ", quick mode" } else { "" }
     );
     md.push_str(
-        "Only the `render` call is timed: the vertex stage, rasterization and shading for the \
-         Z-buffer; BVH construction and tracing for the ray tracer. Tessellating the scene is not \
-         timed. Total face area is the sum over all faces, back faces included (the Z-buffer draws \
+        "Only the render call is timed, each algorithm rendering into its own frame kept from \
+         render to render: the vertex stage, rasterization and shading for the Z-buffer; BVH \
+         construction and tracing for the ray tracer. Tessellating the scene is not timed. Total \
+         face area is the sum over all faces, back faces included (the Z-buffer draws \
          them), of the projected area clipped to the image.\n\n",
     );
     for experiment in Experiment::ALL {

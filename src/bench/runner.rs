@@ -1,10 +1,11 @@
 //! Runs the sweeps: builds each point's world (not timed), records its face count and area, then
-//! times `render` `reps` times for each algorithm, the three taking turns, and keeps the median,
+//! times a render `reps` times for each algorithm, the three taking turns, and keeps the median,
 //! minimum and maximum.
 //!
-//! Only the `render` call is timed. For the ray tracer that call includes building its BVH; for the
-//! Z-buffer it includes the vertex stage, rasterization and shading. Tessellating the scene into a
-//! world happens before and is not timed.
+//! Only the render call is timed, into a frame each algorithm keeps from render to render. For the
+//! ray tracer that call includes building its BVH; for the Z-buffer it includes the vertex stage,
+//! rasterization and shading. Tessellating the scene into a world happens before and is not
+//! timed.
 
 use std::path::Path;
 use std::time::{Duration, Instant};

@@ -1,6 +1,7 @@
 //! A rendered image in linear RGB, and its 8-bit sRGB encoding.
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 /// A `width`×`height` image of linear RGB, row-major from the top-left pixel.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -80,21 +81,23 @@ impl Frame {
 }
 
 /// Averages each `n`×`n` block of `samples`, an image `width` samples wide, into one pixel of
-/// `out`, an image `width / n` pixels wide and as many rows as `out` holds.
+/// `out`, an image `width / n` pixels wide and as many rows as `out` holds. Rows in parallel.
 pub fn box_filter(samples: &[Vec3], width: u32, n: u32, out: &mut [Vec3]) {
     let (width, n) = (width as usize, n as usize);
     let out_width = width / n;
     let scale = 1.0 / (n * n) as f32;
-    for (y, row) in out.chunks_mut(out_width).enumerate() {
-        for (x, pixel) in row.iter_mut().enumerate() {
-            let mut sum = Vec3::ZERO;
-            for sy in 0..n {
-                let start = (y * n + sy) * width + x * n;
-                sum += samples[start..start + n].iter().copied().sum::<Vec3>();
+    out.par_chunks_mut(out_width)
+        .enumerate()
+        .for_each(|(y, row)| {
+            for (x, pixel) in row.iter_mut().enumerate() {
+                let mut sum = Vec3::ZERO;
+                for sy in 0..n {
+                    let start = (y * n + sy) * width + x * n;
+                    sum += samples[start..start + n].iter().copied().sum::<Vec3>();
+                }
+                *pixel = sum * scale;
             }
-            *pixel = sum * scale;
-        }
-    }
+        });
 }
 
 /// Linear [0, 1] (clamped) to an 8-bit sRGB code value.
