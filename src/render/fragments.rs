@@ -23,8 +23,6 @@ pub struct Fragments {
     pub x: [u32; WIDTH],
     /// Object index in the world of each lane.
     pub object: [u32; WIDTH],
-    /// Whether every lane belongs to `object[0]`.
-    pub one_object: bool,
     /// Depth w of the surface along the view direction, world units (> 0).
     pub depth: F32x8,
     /// The perspective-correct varying.
@@ -57,7 +55,6 @@ impl Fragments {
             WIDTH,
             std::array::from_fn(|lane| first + lane as u32),
             [object; WIDTH],
-            true,
             [
                 plane(at_start.x, per_x.x),
                 plane(at_start.y, per_x.y),
@@ -74,7 +71,6 @@ impl Fragments {
         count: usize,
         x: [u32; WIDTH],
         object: [u32; WIDTH],
-        one_object: bool,
         [vx, vy, vz, inv_w]: [F32x8; 4],
     ) -> Fragments {
         let depth = F32x8::splat(1.0) / inv_w;
@@ -83,7 +79,6 @@ impl Fragments {
             count,
             x,
             object,
-            one_object,
             depth,
             varying: V3::new(vx * depth, vy * depth, vz * depth),
         }
@@ -142,13 +137,11 @@ impl Packer {
                 values[n] = values[last];
             }
         }
-        let one_object = self.object.iter().all(|&o| o == self.object[0]);
         Some(Fragments::from_interpolants(
             y,
             count,
             self.x,
             self.object,
-            one_object,
             self.values.map(F32x8::from),
         ))
     }

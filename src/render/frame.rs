@@ -51,21 +51,6 @@ impl Frame {
         (self.width, self.height) = (width, height);
     }
 
-    /// Averages each `n`×`n` block into one pixel: the box filter of N×N supersampling.
-    pub fn downsample(self, n: u32) -> Frame {
-        if n <= 1 {
-            return self;
-        }
-        let (w, h) = (self.width / n, self.height / n);
-        let mut pixels = vec![Vec3::ZERO; w as usize * h as usize];
-        box_filter(&self.pixels, self.width, n, &mut pixels);
-        Frame {
-            width: w,
-            height: h,
-            pixels,
-        }
-    }
-
     /// 8-bit sRGB bytes, three per pixel: each channel clamped to [0, 1] then sRGB-encoded.
     pub fn to_srgb8(&self) -> Vec<u8> {
         self.pixels

@@ -66,16 +66,6 @@ impl<L: Lanes> V3<L> {
         )
     }
 
-    /// `yes` where `mask` holds, else `no`.
-    #[inline(always)]
-    pub fn select(mask: L::Mask, yes: V3<L>, no: V3<L>) -> V3<L> {
-        V3::new(
-            L::select(mask, yes.x, no.x),
-            L::select(mask, yes.y, no.y),
-            L::select(mask, yes.z, no.z),
-        )
-    }
-
     /// Component-wise product.
     #[inline(always)]
     pub fn mul_elements(self, o: V3<L>) -> V3<L> {

@@ -40,8 +40,6 @@ pub trait Lanes:
     fn gt(self, other: Self) -> Self::Mask;
     /// Where `self < other`.
     fn lt(self, other: Self) -> Self::Mask;
-    /// `yes` where `mask` holds, else `no`.
-    fn select(mask: Self::Mask, yes: Self, no: Self) -> Self;
     /// `value` where `mask` holds, else 0.
     fn keep(mask: Self::Mask, value: Self) -> Self;
     /// −`value` where `mask` holds, else `value`.
@@ -94,11 +92,6 @@ impl Lanes for f32 {
     #[inline(always)]
     fn lt(self, other: f32) -> bool {
         self < other
-    }
-
-    #[inline(always)]
-    fn select(mask: bool, yes: f32, no: f32) -> f32 {
-        if mask { yes } else { no }
     }
 
     #[inline(always)]
@@ -163,11 +156,6 @@ impl Lanes for F32x8 {
     #[inline(always)]
     fn lt(self, other: F32x8) -> F32x8 {
         self.cmp_lt(other)
-    }
-
-    #[inline(always)]
-    fn select(mask: F32x8, yes: F32x8, no: F32x8) -> F32x8 {
-        mask.blend(yes, no)
     }
 
     #[inline(always)]

@@ -1,6 +1,8 @@
 //! Each object's material as the lighting function takes it: the coefficients in lanes, plus
 //! the specular cutoff that lets the lighting skip highlights too faint to show.
 
+use std::borrow::Cow;
+
 use super::lane_vec::V3;
 use super::lanes::{F32x8, Lanes, WIDTH};
 use crate::scene::Material;
@@ -107,9 +109,16 @@ impl ObjectMaterials {
         ObjectMaterials { one, lanes }
     }
 
-    /// The materials of objects `objects`, lane by lane.
+    /// The materials of objects `objects`, lane by lane: the object's own lanes when all eight
+    /// belong to one object (the common case), else gathered.
     #[inline]
-    pub fn gather(&self, objects: &[u32; WIDTH]) -> MaterialLanes<F32x8> {
-        MaterialLanes::gather(objects.map(|o| &self.one[o as usize]))
+    pub fn of_lanes(&self, objects: &[u32; WIDTH]) -> Cow<'_, MaterialLanes<F32x8>> {
+        if objects.iter().all(|&o| o == objects[0]) {
+            Cow::Borrowed(&self.lanes[objects[0] as usize])
+        } else {
+            Cow::Owned(MaterialLanes::gather(
+                objects.map(|o| &self.one[o as usize]),
+            ))
+        }
     }
 }

@@ -43,14 +43,8 @@ pub fn render_into(
             let p = V3::splat(view.eye) + ray * fragments.depth;
             let v = (-ray).normalize_or_zero();
             let n = fragments.varying.normalize_or_zero();
-            let gathered;
-            let material = if fragments.one_object {
-                &materials.lanes[fragments.object[0] as usize]
-            } else {
-                gathered = materials.gather(&fragments.object);
-                &gathered
-            };
-            let color = lighting.shade_lanes(p, n, v, material, |_, _, facing| facing);
+            let material = materials.of_lanes(&fragments.object);
+            let color = lighting.shade_lanes(p, n, v, &material, |_, _, facing| facing);
             fragments.write(color, row);
         },
         out,

@@ -159,18 +159,23 @@ pub fn draw(
             depth.resize(rows.len(), 0.0);
             id.clear();
             id.resize(rows.len(), 0);
-            scan_band(&triangles, bin, width, top, band_rows, |span, i, t, y| {
-                let z0 = t.interpolants(t.min_x + span.start as i32, y).w;
-                let start = (y as u32 - top) as usize * width as usize + t.min_x as usize;
-                let range = start + span.start..start + span.end;
-                depth_test(
-                    &mut depth[range.clone()],
-                    &mut id[range],
-                    z0,
-                    t.per_x.w,
-                    i + 1,
-                );
-            });
+            scan_band(
+                &triangles,
+                bin,
+                width,
+                top,
+                band_rows,
+                |span, x, y, i, t| {
+                    let z0 = t.interpolants(x, y).w;
+                    depth_test(
+                        &mut depth[span.clone()],
+                        &mut id[span],
+                        z0,
+                        t.per_x.w,
+                        i + 1,
+                    );
+                },
+            );
             for (r, (out, ids)) in rows
                 .chunks_mut(width as usize)
                 .zip(id.chunks(width as usize))
@@ -269,12 +274,16 @@ pub fn coverage_counts(world: &World, view: &View) -> Vec<u32> {
         .for_each(|(band, (rows, bin))| {
             let top = band as u32 * BAND_ROWS;
             let band_rows = rows.len() as u32 / width;
-            scan_band(&triangles, bin, width, top, band_rows, |span, _, t, y| {
-                let start = (y as u32 - top) as usize * width as usize + t.min_x as usize;
-                for count in &mut rows[start + span.start..start + span.end] {
-                    *count += 1;
-                }
-            });
+            scan_band(
+                &triangles,
+                bin,
+                width,
+                top,
+                band_rows,
+                |span, _, _, _, _| {
+                    rows[span].iter_mut().for_each(|count| *count += 1);
+                },
+            );
         });
     counts
 }
@@ -490,9 +499,10 @@ fn bin(triangles: &ScreenTriangles, height: u32) -> Vec<Vec<u32>> {
     bins
 }
 
-/// Scan-converts the band's triangles in order, calling `span(columns, triangle number,
-/// triangle, y)` for each run of covered pixel centres in row `y`; the columns count from the
-/// triangle's `min_x`. Rows `top..top + rows` of a `width`-pixel image form the band.
+/// Scan-converts the band's triangles in order, calling `span(pixels, x, y, triangle id,
+/// triangle)` for each run of covered pixel centres: `pixels` indexes the band's own buffers,
+/// and the run starts at pixel (x, y) of the view. Rows `top..top + rows` of a `width`-pixel
+/// image form the band.
 #[inline]
 fn scan_band(
     triangles: &ScreenTriangles,
@@ -500,7 +510,7 @@ fn scan_band(
     width: u32,
     top: u32,
     rows: u32,
-    mut span: impl FnMut(Range<usize>, u32, &ScreenTriangle, i32),
+    mut span: impl FnMut(Range<usize>, i32, i32, u32, &ScreenTriangle),
 ) {
     debug_assert!(width > 0);
     let bottom = (top + rows) as i32 - 1;
@@ -553,7 +563,9 @@ fn scan_band(
                         && row_start[k] + hi * step_x[k] >= 0),
                     "span solved wrongly"
                 );
-                span(lo as usize..hi as usize + 1, i, t, y);
+                let x = t.min_x + lo as i32;
+                let start = (y as u32 - top) as usize * width as usize + x as usize;
+                span(start..start + (hi - lo) as usize + 1, x, y, i, t);
             }
             for k in 0..3 {
                 row_start[k] += step_y[k];

@@ -23,6 +23,7 @@ use super::packet::RayPacket;
 use super::progress::{Cancelled, Progress};
 use super::ray::Ray;
 use super::shading::Lighting;
+use crate::scene::Light;
 use crate::world::World;
 
 /// Deepest reflection recursion traced, whatever the options ask: the limit scene files
@@ -73,21 +74,11 @@ pub fn render(
     progress: &Progress,
 ) -> Result<Frame, Cancelled> {
     let accel = SceneAccel::build(world);
-    render_with(&accel, world, view, options, progress)
+    render_with_stats(&accel, world, view, options, progress).map(|(frame, _)| frame)
 }
 
-/// As [`render`], with an acceleration structure already built from `world`.
-pub fn render_with(
-    accel: &SceneAccel,
-    world: &World,
-    view: &View,
-    options: &RenderOptions,
-    progress: &Progress,
-) -> Result<Frame, Cancelled> {
-    render_with_stats(accel, world, view, options, progress).map(|(frame, _)| frame)
-}
-
-/// As [`render_with`], also counting the rays cast.
+/// As [`render`], with an acceleration structure already built from `world`, also counting
+/// the rays cast.
 pub fn render_with_stats(
     accel: &SceneAccel,
     world: &World,
@@ -138,12 +129,12 @@ pub fn trace_into(
                 // edge or last row repeat a pixel inside it and are not written.
                 let column = |k: usize| (left + k % PACKET_COLUMNS).min(width - 1);
                 let row = |k: usize| (k / PACKET_COLUMNS).min(height - 1);
-                let real: [bool; WIDTH] = std::array::from_fn(|k| {
-                    left + k % PACKET_COLUMNS < width && k / PACKET_COLUMNS < height
-                });
+                let real = (0..WIDTH)
+                    .filter(|k| left + k % PACKET_COLUMNS < width && k / PACKET_COLUMNS < height)
+                    .fold(0u32, |lanes, k| lanes | 1 << k);
                 let pixel = std::array::from_fn(|k| (column(k) as u32, (top + row(k)) as u32));
                 let colors = tracer.trace_primary(view, pixel, real, &mut stats);
-                for k in (0..WIDTH).filter(|&k| real[k]) {
+                for k in (0..WIDTH).filter(|k| real & 1 << k != 0) {
                     rows[row(k) * width + column(k)] = colors[k];
                 }
             }
@@ -199,12 +190,12 @@ impl Tracer<'_> {
     }
 
     /// Colour of the eight primary rays through the centres of `pixel` (column, row); lanes
-    /// that are not `real` are computed but not counted.
+    /// whose bit is not set in `real` are computed but not counted.
     fn trace_primary(
         &self,
         view: &View,
         pixel: [(u32, u32); WIDTH],
-        real: [bool; WIDTH],
+        real: u32,
         stats: &mut RayStats,
     ) -> [Vec3; WIDTH] {
         let x = F32x8::from(pixel.map(|(i, _)| i as f32 + 0.5));
@@ -213,12 +204,9 @@ impl Tracer<'_> {
         // Start where the rasterizer's near plane cuts each ray, so both see the same.
         let t_min = F32x8::splat(NEAR) / dir.dot(V3::splat(view.forward));
         let packet = RayPacket::new(V3::splat(view.eye), dir, t_min);
-        stats.primary += real.iter().filter(|&&r| r).count() as u64;
+        stats.primary += real.count_ones() as u64;
         let hits = self.accel.intersect_packet(&packet);
-        let real_lanes = (0..WIDTH)
-            .filter(|&k| real[k])
-            .fold(0u32, |m, k| m | 1 << k);
-        let hit_lanes = hits.hit().move_mask() as u32 & real_lanes;
+        let hit_lanes = hits.hit().move_mask() as u32 & real;
         let Some(first) = (0..WIDTH).find(|&k| hit_lanes & 1 << k != 0) else {
             return [self.world.background; WIDTH];
         };
@@ -232,30 +220,19 @@ impl Tracer<'_> {
             let s = source(k);
             self.surface(objects[s], triangles[s], u[s], v[s], dirs[k])
         });
-        let object: [u32; WIDTH] = std::array::from_fn(|k| objects[source(k)]);
-        let gathered;
-        let material = if object.iter().all(|&o| o == object[0]) {
-            &self.materials.lanes[object[0] as usize]
-        } else {
-            gathered = self.materials.gather(&object);
-            &gathered
-        };
+        let material = self
+            .materials
+            .of_lanes(&std::array::from_fn(|k| objects[source(k)]));
         let p = V3::gather(&surfaces.each_ref().map(|s| s.p));
         let n = V3::gather(&surfaces.each_ref().map(|s| s.n));
         let lit = self
             .lighting
-            .shade_lanes(p, n, -dir, material, |_, light, facing| {
-                if !self.shadows {
-                    return facing;
-                }
+            .shade_lanes(p, n, -dir, &material, |_, light, facing| {
                 let wanted = facing.move_mask() as u32 & hit_lanes;
                 let reached: [u32; WIDTH] = std::array::from_fn(|k| {
-                    if wanted & 1 << k == 0 {
-                        return 0;
-                    }
-                    stats.shadow += 1;
-                    let open = !self.accel.occluded(surfaces[k].origin, light.position);
-                    if open { u32::MAX } else { 0 }
+                    let lit = wanted & 1 << k != 0
+                        && self.light_reaches(surfaces[k].origin, light, stats);
+                    if lit { u32::MAX } else { 0 }
                 });
                 bytemuck::cast(reached)
             })
@@ -278,13 +255,19 @@ impl Tracer<'_> {
         let s = self.surface(hit.object, hit.triangle, hit.u, hit.v, d);
         let material = &self.materials.one[hit.object as usize];
         let lit = self.lighting.shade(s.p, s.n, -d, material, |_, light| {
-            if !self.shadows {
-                return true;
-            }
-            stats.shadow += 1;
-            !self.accel.occluded(s.origin, light.position)
+            self.light_reaches(s.origin, light, stats)
         });
         lit + self.reflection(hit.object, &s, d, depth, stats)
+    }
+
+    /// Whether `light` reaches a point whose secondary rays start at `origin`: always without
+    /// shadows, else when its shadow ray is unblocked.
+    fn light_reaches(&self, origin: Vec3, light: &Light, stats: &mut RayStats) -> bool {
+        if !self.shadows {
+            return true;
+        }
+        stats.shadow += 1;
+        !self.accel.occluded(origin, light.position)
     }
 
     /// What the mirror of object `object` at surface `s`, hit along `d` by a ray of reflection
