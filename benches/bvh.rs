@@ -12,8 +12,8 @@ use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
-use rastray::render::accel::SceneAccel;
-use rastray::render::{Algorithm, Frame, Progress, RenderOptions, View, raytrace};
+use rastray::render::ray::accel::SceneAccel;
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, View, ray::tracer};
 use rastray::scene::{Camera, Light, Object, Shape};
 use rastray::{Scene, World};
 
@@ -62,7 +62,7 @@ fn ray_tracer(c: &mut Criterion) {
             b.iter(|| {
                 let progress = Progress::new();
                 let out = &mut frame.pixels;
-                black_box(raytrace::trace_into(
+                black_box(tracer::trace_into(
                     &accel, &world, &view, &primary, &progress, out,
                 ))
             })

@@ -11,8 +11,8 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use rastray::World;
-use rastray::render::accel::SceneAccel;
-use rastray::render::raytrace::{RayStats, render_with_stats};
+use rastray::render::ray::accel::SceneAccel;
+use rastray::render::ray::tracer::{RayStats, render_with_stats};
 use rastray::render::{Algorithm, Progress, RenderOptions, View};
 use rastray::scene::{Scene, from_toml_str};
 

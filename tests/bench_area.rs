@@ -12,7 +12,7 @@ use rastray::bench::experiments::{
 use rastray::bench::runner::summarize;
 use rastray::bench::{face_count, total_face_area};
 use rastray::mesh::Mesh;
-use rastray::render::raster::coverage_counts;
+use rastray::render::raster::zbuffer::coverage_counts;
 use rastray::render::{Algorithm, Size, View};
 use rastray::scene::{Camera, Material, Object, Scene, Shape};
 use rastray::world::{World, WorldObject};

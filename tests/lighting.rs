@@ -6,12 +6,12 @@ use std::f32::consts::{PI, TAU};
 
 use glam::{Vec3, Vec4};
 use proptest::prelude::*;
-use rastray::render::fragments::{Fragments, Packer};
-use rastray::render::lane_vec::V3;
-use rastray::render::lanes::{F32x8, WIDTH};
 use rastray::render::materials::{MaterialLanes, SPECULAR_FLOOR};
-use rastray::render::pow::pow;
+use rastray::render::raster::fragments::{Fragments, Packer};
 use rastray::render::shading::Lighting;
+use rastray::render::simd::lane_vec::V3;
+use rastray::render::simd::lanes::{F32x8, WIDTH};
+use rastray::render::simd::pow::pow;
 use rastray::scene::{Falloff, Light, Material};
 
 proptest! {

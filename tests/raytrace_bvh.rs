@@ -6,12 +6,12 @@
 use glam::{Vec3, Vec3A};
 use proptest::prelude::*;
 use rastray::mesh::{Mesh, icosahedron};
-use rastray::render::bvh::{Bvh, MAX_TREE_DEPTH, Node};
-use rastray::render::intersect::Triangle;
-use rastray::render::lane_vec::V3;
-use rastray::render::lanes::{F32x8, WIDTH};
-use rastray::render::packet::{PacketHits, RayPacket};
-use rastray::render::ray::Ray;
+use rastray::render::ray::bvh::{Bvh, MAX_TREE_DEPTH, Node};
+use rastray::render::ray::half_line::Ray;
+use rastray::render::ray::intersect::Triangle;
+use rastray::render::ray::packet::{PacketHits, RayPacket};
+use rastray::render::simd::lane_vec::V3;
+use rastray::render::simd::lanes::{F32x8, WIDTH};
 
 fn mesh_from(triangles: &[[Vec3; 3]]) -> Mesh {
     let positions: Vec<Vec3> = triangles.iter().flatten().copied().collect();

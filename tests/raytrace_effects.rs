@@ -5,8 +5,8 @@ use std::path::Path;
 
 use glam::Vec3;
 use rastray::World;
-use rastray::render::accel::SceneAccel;
-use rastray::render::raytrace::render_with_stats;
+use rastray::render::ray::accel::SceneAccel;
+use rastray::render::ray::tracer::render_with_stats;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, View, render};
 use rastray::scene::{Scene, from_toml_str};
 

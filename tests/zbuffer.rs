@@ -5,9 +5,9 @@ mod common;
 
 use glam::{Affine3A, Quat, Vec3};
 use rastray::mesh::{FaceList, with_normals};
-use rastray::render::fragments::Fragments;
-use rastray::render::lane_vec::V3;
-use rastray::render::raster::coverage_counts;
+use rastray::render::raster::fragments::Fragments;
+use rastray::render::raster::zbuffer::coverage_counts;
+use rastray::render::simd::lane_vec::V3;
 use rastray::render::{Algorithm, View};
 use rastray::world::WorldObject;
 use rastray::{World, scene::Material};
@@ -238,8 +238,15 @@ material = { color = [0.5, 0.5, 0.5] }
         let depth = fragments.depth;
         fragments.write(V3::new(depth, depth, depth), row)
     };
-    rastray::render::raster::draw(&world, &view, &progress, &normals, write_depth, &mut drawn)
-        .expect("draw");
+    rastray::render::raster::zbuffer::draw(
+        &world,
+        &view,
+        &progress,
+        &normals,
+        write_depth,
+        &mut drawn,
+    )
+    .expect("draw");
     let depths: Vec<f32> = drawn.iter().map(|d| d.x).collect();
     for y in 0..48u32 {
         for x in 0..64u32 {
@@ -326,8 +333,10 @@ fn strips_rendered_separately_join_into_the_whole_image() {
     for algorithm in [Algorithm::Gouraud, Algorithm::Phong] {
         let draw = |view: &View| {
             match algorithm {
-                Algorithm::Gouraud => rastray::render::gouraud::render(&world, view, &progress),
-                _ => rastray::render::phong::render(&world, view, &progress),
+                Algorithm::Gouraud => {
+                    rastray::render::raster::gouraud::render(&world, view, &progress)
+                }
+                _ => rastray::render::raster::phong::render(&world, view, &progress),
             }
             .expect("render")
         };

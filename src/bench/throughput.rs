@@ -9,9 +9,9 @@ use glam::Vec3;
 use super::area::total_face_area;
 use super::runner::{summarize, time_render};
 use crate::mesh::load_obj;
-use crate::render::accel::SceneAccel;
+use crate::render::ray::accel::SceneAccel;
 use crate::render::{
-    Algorithm, Cancelled, Frame, Progress, RenderError, RenderOptions, Size, View, raytrace,
+    Algorithm, Cancelled, Frame, Progress, RenderError, RenderOptions, Size, View, ray::tracer,
 };
 use crate::scene::{Camera, Light, Object, Scene, Shape};
 use crate::world::World;
@@ -40,7 +40,7 @@ pub fn render_ray_with_stats(
 ) -> Result<RayStats, Cancelled> {
     let accel = SceneAccel::build(world);
     frame.reshape(view.width, view.height);
-    let rays = raytrace::trace_into(&accel, world, view, options, progress, &mut frame.pixels)?;
+    let rays = tracer::trace_into(&accel, world, view, options, progress, &mut frame.pixels)?;
     Ok(RayStats {
         primary: rays.primary,
         shadow: rays.shadow,

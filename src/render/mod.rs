@@ -1,26 +1,15 @@
 //! The renderer core: one camera, one lighting function, three algorithms.
 
-pub mod accel;
 mod algorithm;
-pub mod bvh;
-mod bvh_build;
 pub mod camera;
-pub mod fragments;
 pub mod frame;
-pub mod gouraud;
-pub mod intersect;
-pub mod lane_vec;
-pub mod lanes;
 pub mod materials;
 mod options;
-pub mod packet;
-pub mod phong;
-pub mod pow;
 pub mod progress;
 pub mod raster;
 pub mod ray;
-pub mod raytrace;
 pub mod shading;
+pub mod simd;
 
 pub use algorithm::Algorithm;
 pub use camera::View;
@@ -75,7 +64,7 @@ pub fn render_into(
 /// `world` is given (the editor keeps it while only the camera moves); built here when needed.
 pub fn render_prepared(
     world: &World,
-    accel: Option<&accel::SceneAccel>,
+    accel: Option<&ray::accel::SceneAccel>,
     camera: &Camera,
     options: &RenderOptions,
     progress: &Progress,
@@ -88,7 +77,7 @@ pub fn render_prepared(
 /// As [`render_prepared`], into `frame` (see [`render_into`]).
 pub fn render_prepared_into(
     world: &World,
-    accel: Option<&accel::SceneAccel>,
+    accel: Option<&ray::accel::SceneAccel>,
     camera: &Camera,
     options: &RenderOptions,
     progress: &Progress,
@@ -103,16 +92,16 @@ pub fn render_prepared_into(
     frame.reshape(options.width, options.height);
     // The ray tracer's acceleration structure is built once for all strips.
     let built = match accel {
-        None if options.algorithm == Algorithm::Ray => Some(accel::SceneAccel::build(world)),
+        None if options.algorithm == Algorithm::Ray => Some(ray::accel::SceneAccel::build(world)),
         _ => None,
     };
     let accel = accel.or(built.as_ref());
     let draw = |view: &View, out: &mut [Vec3]| match options.algorithm {
-        Algorithm::Gouraud => gouraud::render_into(world, view, progress, out),
-        Algorithm::Phong => phong::render_into(world, view, progress, out),
+        Algorithm::Gouraud => raster::gouraud::render_into(world, view, progress, out),
+        Algorithm::Phong => raster::phong::render_into(world, view, progress, out),
         Algorithm::Ray => {
             let accel = accel.expect("given or built above for the ray tracer");
-            raytrace::trace_into(accel, world, view, options, progress, out).map(|_| ())
+            ray::tracer::trace_into(accel, world, view, options, progress, out).map(|_| ())
         }
     };
     let width = options.width as usize;

@@ -6,10 +6,10 @@
 
 use glam::Vec3;
 
-use super::lane_vec::V3;
-use super::lanes::Lanes;
 use super::materials::MaterialLanes;
-use super::pow::pow;
+use super::simd::lane_vec::V3;
+use super::simd::lanes::Lanes;
+use super::simd::pow::pow;
 use crate::scene::{Falloff, Light};
 use crate::world::World;
 

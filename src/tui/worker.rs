@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use super::preview::PreviewImage;
 use crate::World;
-use crate::render::accel::SceneAccel;
+use crate::render::ray::accel::SceneAccel;
 use crate::render::{Algorithm, Progress, RenderError, RenderOptions, render_prepared};
 use crate::scene::{Camera, Scene};
 use crate::world::ObjCache;

@@ -9,8 +9,8 @@
 use glam::{Vec3, Vec3A, Vec4};
 
 use super::bvh_build;
+use super::half_line::Ray;
 use super::intersect::{Triangle, ray_box};
-use super::ray::Ray;
 use crate::mesh::Mesh;
 
 /// The deepest tree the builder makes; a node at this depth becomes a leaf whatever its size.

@@ -13,16 +13,16 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::accel::SceneAccel;
-use super::camera::{NEAR, View};
-use super::frame::Frame;
-use super::lane_vec::V3;
-use super::lanes::{F32x8, WIDTH};
-use super::materials::ObjectMaterials;
-use super::options::RenderOptions;
+use super::half_line::Ray;
 use super::packet::RayPacket;
-use super::progress::{Cancelled, Progress};
-use super::ray::Ray;
-use super::shading::Lighting;
+use crate::render::camera::{NEAR, View};
+use crate::render::frame::Frame;
+use crate::render::materials::ObjectMaterials;
+use crate::render::options::RenderOptions;
+use crate::render::progress::{Cancelled, Progress};
+use crate::render::shading::Lighting;
+use crate::render::simd::lane_vec::V3;
+use crate::render::simd::lanes::{F32x8, WIDTH};
 use crate::scene::Light;
 use crate::world::World;
 

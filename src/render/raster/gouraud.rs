@@ -3,14 +3,14 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::camera::View;
-use super::frame::Frame;
-use super::lane_vec::V3;
-use super::lanes::WIDTH;
-use super::materials::ObjectMaterials;
-use super::progress::{Cancelled, Progress};
-use super::raster::draw;
-use super::shading::Lighting;
+use super::zbuffer::draw;
+use crate::render::camera::View;
+use crate::render::frame::Frame;
+use crate::render::materials::ObjectMaterials;
+use crate::render::progress::{Cancelled, Progress};
+use crate::render::shading::Lighting;
+use crate::render::simd::lane_vec::V3;
+use crate::render::simd::lanes::WIDTH;
 use crate::world::World;
 
 /// Renders `world` through `view` (one sample per pixel).

@@ -17,10 +17,10 @@ use std::ops::Range;
 use glam::{DVec4, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::camera::{NEAR, View};
 use super::fragments::{Fragments, Packer};
-use super::lanes::{F32x8, WIDTH, load};
-use super::progress::{Cancelled, Progress};
+use crate::render::camera::{NEAR, View};
+use crate::render::progress::{Cancelled, Progress};
+use crate::render::simd::lanes::{F32x8, WIDTH, load};
 use crate::world::World;
 use wide::{CmpGe, u32x8};
 

@@ -7,9 +7,9 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::bvh::Bvh;
+use super::half_line::Ray;
 use super::intersect::segment_meets_sphere;
 use super::packet::{PacketHits, RayPacket};
-use super::ray::Ray;
 use crate::mesh::Sphere;
 use crate::world::World;
 

@@ -9,8 +9,8 @@
 
 use glam::{Vec3, Vec4};
 
-use super::lane_vec::V3;
-use super::lanes::{F32x8, WIDTH};
+use crate::render::simd::lane_vec::V3;
+use crate::render::simd::lanes::{F32x8, WIDTH};
 
 /// Up to [`WIDTH`] covered pixels of one row. Lanes past `count` repeat the last pixel.
 #[derive(Debug, Clone, Copy)]

@@ -3,7 +3,7 @@
 
 use glam::{Vec3, Vec3A};
 
-use super::ray::Ray;
+use super::half_line::Ray;
 
 /// A ray is treated as parallel to a triangle's plane when |cos| of its angle with the plane's
 /// normal is at most this: the hit point would be numerically meaningless.
