@@ -14,6 +14,6 @@ pub mod scene;
 pub mod tui;
 pub mod world;
 
-pub use render::{Algorithm, Frame, RenderOptions, render, render_into};
+pub use render::{Algorithm, Frame, RenderOptions, RenderStats, Renderer};
 pub use scene::Scene;
 pub use world::World;

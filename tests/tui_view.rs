@@ -2,10 +2,11 @@
 //! preview's cell colours checked pixel by pixel (snapshots hold no colours).
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use glam::Vec3;
 use rastray::World;
-use rastray::render::{Algorithm, Frame, Progress, RenderOptions, render};
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::scene::default_scene;
 use rastray::tui::action::Action;
 use rastray::tui::app::{App, Focus, Shot};
@@ -175,14 +176,11 @@ fn cells(image: &PreviewImage, mode: ColorMode) -> Buffer {
 fn upper_and_lower_halves_carry_their_pixels() {
     // A real render of the default scene, so the check covers the path the editor uses.
     let scene = default_scene();
-    let world = World::build(&scene, std::path::Path::new(".")).unwrap();
-    let frame = render(
-        &world,
-        &scene.camera,
-        &RenderOptions::new(Algorithm::Phong, 48, 32),
-        &Progress::new(),
-    )
-    .unwrap();
+    let world = Arc::new(World::build(&scene, std::path::Path::new(".")).unwrap());
+    let mut frame = Frame::default();
+    Renderer::new(RenderOptions::new(Algorithm::Phong, 48, 32))
+        .render(&world, &scene.camera, &Progress::new(), &mut frame)
+        .unwrap();
     let image = PreviewImage::from_frame(&frame);
     let buf = cells(&image, ColorMode::Truecolor);
     let rgb = |p: [u8; 3]| Color::Rgb(p[0], p[1], p[2]);

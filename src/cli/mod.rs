@@ -1,6 +1,7 @@
 //! Command-line arguments and dispatch. Every user error comes back as an `anyhow` error that
 //! names the file, line or field; `main` prints it and exits with code 2.
 
+mod algorithm_arg;
 mod bench;
 mod info;
 mod render;

@@ -6,8 +6,8 @@
 
 use glam::{Vec2, Vec3};
 
-use super::simd::lane_vec::V3;
-use super::simd::lanes::Lanes;
+use super::simd::Lanes;
+use super::simd::V3;
 use crate::scene::Camera;
 
 /// Distance of the near clipping plane in front of the eye, world units.

@@ -3,8 +3,8 @@
 
 use std::borrow::Cow;
 
-use super::simd::lane_vec::V3;
-use super::simd::lanes::{F32x8, Lanes, WIDTH};
+use super::simd::V3;
+use super::simd::{F32x8, Lanes, WIDTH};
 use crate::scene::Material;
 use crate::world::World;
 

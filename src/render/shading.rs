@@ -7,9 +7,9 @@
 use glam::Vec3;
 
 use super::materials::MaterialLanes;
-use super::simd::lane_vec::V3;
-use super::simd::lanes::Lanes;
-use super::simd::pow::pow;
+use super::simd::Lanes;
+use super::simd::V3;
+use super::simd::pow;
 use crate::scene::{Falloff, Light};
 use crate::world::World;
 
@@ -112,3 +112,6 @@ impl<'a> Lighting<'a> {
         .to_vec3()
     }
 }
+
+#[cfg(test)]
+mod tests;

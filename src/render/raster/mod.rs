@@ -2,7 +2,15 @@
 //! (`fragments`), to a shader; Gouraud lights the vertices and interpolates the colour, Phong
 //! interpolates the normal and lights every pixel.
 
-pub mod fragments;
-pub mod gouraud;
-pub mod phong;
-pub mod zbuffer;
+mod fragments;
+mod gouraud;
+mod phong;
+mod zbuffer;
+
+pub(crate) use gouraud::render_gouraud;
+pub(crate) use phong::render_phong;
+#[cfg(test)]
+pub(crate) use zbuffer::coverage_counts;
+
+#[cfg(test)]
+mod tests;

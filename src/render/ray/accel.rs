@@ -79,11 +79,6 @@ impl SceneAccel {
         }
     }
 
-    /// Total triangles over all objects.
-    pub fn triangle_count(&self) -> usize {
-        self.objects.iter().map(|o| o.bvh.triangles.len()).sum()
-    }
-
     /// The nearest hit with t in (t_min, t_max) over all objects.
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
         let mut best = None;

@@ -2,10 +2,16 @@
 //! BVH (`bvh`, built by `bvh_build`), the scene's acceleration structure (`accel`), and the
 //! tracer itself.
 
-pub mod accel;
-pub mod bvh;
+mod accel;
+mod bvh;
 mod bvh_build;
-pub mod half_line;
-pub mod intersect;
-pub mod packet;
-pub mod tracer;
+mod half_line;
+mod intersect;
+mod packet;
+mod tracer;
+
+pub(crate) use accel::SceneAccel;
+pub(crate) use tracer::trace_into;
+
+#[cfg(test)]
+mod tests;
