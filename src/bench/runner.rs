@@ -15,60 +15,15 @@ use std::time::Duration;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::area::{face_count, total_face_area};
+use super::error::BenchError;
 use super::experiments::{Experiment, Point, points};
-use super::report::number;
+use super::format::number;
+use super::measurement::{BenchConfig, Measurement};
 use crate::render::{
-    Algorithm, Frame, Progress, RenderError, RenderOptions, RenderStats, Renderer, Size, View,
+    Algorithm, Frame, Progress, RenderError, RenderOptions, RenderStats, Renderer, View,
 };
-use crate::scene::{Camera, SceneError};
+use crate::scene::Camera;
 use crate::world::World;
-
-/// What one sweep run measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct BenchConfig {
-    /// Image size of every render.
-    pub size: Size,
-    /// Timed renders per point and algorithm, ≥ 1.
-    pub reps: u32,
-    /// Fewer points, for a first look and for CI.
-    pub quick: bool,
-}
-
-/// One algorithm on one scene: timing summary over the repetitions.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Measurement {
-    pub experiment: Experiment,
-    pub algorithm: Algorithm,
-    /// Triangles in the scene.
-    pub faces: usize,
-    /// Total projected face area, square pixels, overdraw included.
-    pub area_px: f64,
-    /// Median render time, milliseconds.
-    pub median_ms: f64,
-    /// Fastest render, milliseconds.
-    pub min_ms: f64,
-    /// Slowest render, milliseconds.
-    pub max_ms: f64,
-}
-
-/// Why a sweep stopped.
-#[derive(Debug, thiserror::Error)]
-pub enum BenchError {
-    #[error("building the benchmark scene: {0}")]
-    Scene(#[from] SceneError),
-    #[error("rendering the benchmark scene: {0}")]
-    Render(#[from] RenderError),
-    #[error("writing {path}: {source}")]
-    Write {
-        path: std::path::PathBuf,
-        source: std::io::Error,
-    },
-    #[error("drawing {path}: {message}")]
-    Plot {
-        path: std::path::PathBuf,
-        message: String,
-    },
-}
 
 /// Median, minimum and maximum of `samples` in milliseconds; the median of an even count is the
 /// mean of the two middle values. `samples` must not be empty.

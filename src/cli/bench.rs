@@ -8,9 +8,9 @@ use anyhow::Context;
 use clap::{Args, Subcommand};
 use indicatif::ProgressBar;
 use rastray::World;
-use rastray::bench::report::{CSV_FILE, REPORT_FILE, number};
+use rastray::bench::report::{CSV_FILE, REPORT_FILE};
 use rastray::bench::throughput::{measure, obj_scene};
-use rastray::bench::{BenchConfig, plot, report, run};
+use rastray::bench::{BenchConfig, number, plot, report, run};
 use rastray::render::Size;
 
 /// Timed renders per point by default, and in quick mode.
