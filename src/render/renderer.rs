@@ -77,7 +77,7 @@ impl Renderer {
 
     /// Prepares `world` for the options' algorithm now rather than in the next render: keeps
     /// it, and builds the ray tracer's BVH unless one was built for this very world already.
-    /// Cancelling `progress` stops it.
+    /// A cancelled `progress` stops it before it builds anything.
     pub fn prepare(
         &mut self,
         world: &Arc<World>,
