@@ -6,8 +6,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::simd::Lanes;
-use super::simd::V3;
+use super::simd::{Lanes, V3};
 use crate::scene::Camera;
 
 /// Distance of the near clipping plane in front of the eye, world units.

@@ -3,8 +3,7 @@
 
 use std::borrow::Cow;
 
-use super::simd::V3;
-use super::simd::{F32x8, Lanes, WIDTH};
+use super::simd::{F32x8, Lanes, V3, WIDTH};
 use crate::scene::Material;
 use crate::world::World;
 

@@ -8,9 +8,7 @@
 use glam::Vec3;
 
 use super::materials::MaterialLanes;
-use super::simd::Lanes;
-use super::simd::V3;
-use super::simd::pow;
+use super::simd::{Lanes, V3, pow};
 use crate::scene::{Falloff, Light};
 use crate::world::World;
 

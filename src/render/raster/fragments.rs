@@ -9,8 +9,7 @@
 
 use glam::{Vec3, Vec4};
 
-use crate::render::simd::V3;
-use crate::render::simd::{F32x8, WIDTH};
+use crate::render::simd::{F32x8, V3, WIDTH};
 
 /// Up to [`WIDTH`] covered pixels of one row. Lanes past `count` repeat the last pixel.
 #[derive(Debug, Clone, Copy)]

@@ -8,8 +8,7 @@ use crate::render::camera::View;
 use crate::render::materials::ObjectMaterials;
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::shading::Lighting;
-use crate::render::simd::V3;
-use crate::render::simd::WIDTH;
+use crate::render::simd::{V3, WIDTH};
 use crate::world::World;
 
 /// Renders `world` through `view` into `out` (`view.width`×`view.height` pixels).

@@ -7,8 +7,7 @@ use crate::render::camera::View;
 use crate::render::materials::ObjectMaterials;
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::shading::Lighting;
-use crate::render::simd::F32x8;
-use crate::render::simd::V3;
+use crate::render::simd::{F32x8, V3};
 use crate::world::World;
 
 /// Renders `world` through `view` into `out` (`view.width`×`view.height` pixels).

@@ -11,8 +11,7 @@ use wide::{CmpGe, CmpGt, CmpLe, CmpLt, u32x8};
 use super::bvh::{Bvh, MAX_TREE_DEPTH, Node};
 use super::half_line::TINY;
 use super::intersect::{PARALLEL_COS, Triangle};
-use crate::render::simd::F32x8;
-use crate::render::simd::V3;
+use crate::render::simd::{F32x8, V3};
 
 /// Eight rays `origin + t·dir`, t > `t_min`, one per lane.
 #[derive(Debug, Clone, Copy)]
