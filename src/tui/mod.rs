@@ -5,6 +5,7 @@
 
 pub mod action;
 pub mod app;
+pub mod error;
 pub mod export_job;
 pub mod fields;
 pub mod input;
@@ -18,6 +19,7 @@ pub mod update;
 pub mod view;
 pub mod worker;
 
+pub use error::TuiError;
 pub use preview::ColorMode;
 
 use std::io::Write;
@@ -27,7 +29,6 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, Sender, channel};
 use std::time::{Duration, Instant};
 
-use anyhow::Context;
 use ratatui::crossterm::event::{self, Event as TermEvent};
 use ratatui::layout::Rect;
 use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
@@ -50,7 +51,7 @@ enum Event {
 /// Runs the editor on the scene at `scene_path` (the built-in scene when `None`) until the user
 /// quits or the process receives SIGTERM, SIGHUP or SIGINT; unsaved edits then go to the
 /// recovery file.
-pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> {
+pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<(), TuiError> {
     let mut app = load(scene_path.as_deref())?;
     app.color = color;
     if let Some(notice) = recovery::notice(scene_path.as_deref()) {
@@ -59,16 +60,14 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
     let signalled = Arc::new(AtomicBool::new(false));
     // Raw mode turns Ctrl-C into a key, so SIGINT only comes from `kill`: treat it like SIGTERM.
     for signal in [SIGTERM, SIGHUP, SIGINT] {
-        signal_hook::flag::register(signal, signalled.clone()).context("cannot watch signals")?;
+        signal_hook::flag::register(signal, signalled.clone()).map_err(TuiError::Signals)?;
     }
     let (tx, rx) = channel();
     spawn_input(tx.clone());
     let worker = Worker::spawn(move |reply| {
         let _ = tx.send(Event::Render(reply));
     });
-    let mut guard = TerminalGuard::enter().context(
-        "cannot set up the terminal (the editor needs one; `rastray render` works without)",
-    )?;
+    let mut guard = TerminalGuard::enter().map_err(TuiError::TerminalSetup)?;
     let mut state = Loop {
         worker,
         sent: None,
@@ -137,7 +136,7 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
 /// The app on the scene at `path`, or on the built-in scene.
 /// The editor on the scene at `path`; a path that does not exist yet starts a new scene there
 /// from the built-in one (written on the first save), as text editors do with a new file name.
-fn load(path: Option<&Path>) -> anyhow::Result<App> {
+fn load(path: Option<&Path>) -> Result<App, TuiError> {
     Ok(match path {
         Some(p) if !p.exists() => {
             let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
@@ -153,7 +152,7 @@ fn load(path: Option<&Path>) -> anyhow::Result<App> {
         None => App::new(
             crate::scene::default_scene(),
             None,
-            std::env::current_dir().context("no working directory")?,
+            std::env::current_dir().map_err(TuiError::WorkingDirectory)?,
         ),
     })
 }

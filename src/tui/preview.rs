@@ -6,13 +6,12 @@ use ratatui::style::Color;
 use crate::render::Frame;
 
 /// How colours reach the terminal.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ColorMode {
     /// 24-bit RGB escape sequences.
     #[default]
     Truecolor,
     /// The nearest entry of the xterm 256-colour palette.
-    #[value(name = "256")]
     Ansi256,
 }
 
