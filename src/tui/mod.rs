@@ -15,6 +15,7 @@ pub mod preview;
 pub mod recovery;
 pub mod terminal;
 pub mod text;
+pub mod theme;
 pub mod update;
 pub mod view;
 pub mod worker;

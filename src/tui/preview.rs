@@ -3,6 +3,7 @@
 
 use ratatui::style::Color;
 
+use super::theme::TERMINAL_DEFAULT;
 use crate::render::Frame;
 
 /// How colours reach the terminal.
@@ -98,18 +99,18 @@ pub fn half_block(upper: Option<[u8; 3]>, lower: Option<[u8; 3]>, mode: ColorMod
     match (upper, lower) {
         (Some(u), Some(l)) if u == l => HalfBlock {
             symbol: " ",
-            fg: Color::Reset,
+            fg: TERMINAL_DEFAULT,
             bg: u,
         },
         (Some(u), l) => HalfBlock {
             symbol: "▀",
             fg: u,
-            bg: l.unwrap_or(Color::Reset),
+            bg: l.unwrap_or(TERMINAL_DEFAULT),
         },
         (None, _) => HalfBlock {
             symbol: " ",
-            fg: Color::Reset,
-            bg: Color::Reset,
+            fg: TERMINAL_DEFAULT,
+            bg: TERMINAL_DEFAULT,
         },
     }
 }

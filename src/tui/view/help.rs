@@ -2,12 +2,12 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Rect};
-use ratatui::style::{Color, Modifier, Style};
 use ratatui::widgets::{Cell, Clear, Row, Table, Widget};
 
 use super::dialogs::centered;
 use super::pane;
 use crate::tui::keys::KEYS;
+use crate::tui::theme;
 
 /// A centred table of [`KEYS`], scrolled down by the given number of rows.
 pub struct HelpOverlay(pub usize);
@@ -18,8 +18,8 @@ impl Widget for HelpOverlay {
         Clear.render(popup, buf);
         let rows = KEYS.iter().skip(self.0).map(|k| {
             Row::new([
-                Cell::from(k.context).style(Style::new().fg(Color::DarkGray)),
-                Cell::from(k.keys).style(Style::new().fg(Color::Yellow)),
+                Cell::from(k.context).style(theme::DIM),
+                Cell::from(k.keys).style(theme::ACCENT),
                 Cell::from(k.action),
             ])
         });
@@ -31,9 +31,7 @@ impl Widget for HelpOverlay {
                 Constraint::Min(10),
             ],
         )
-        .header(
-            Row::new(["where", "keys", "what"]).style(Style::new().add_modifier(Modifier::BOLD)),
-        )
+        .header(Row::new(["where", "keys", "what"]).style(theme::HEADING))
         .block(pane("Keys · j/k scroll · any other key closes", true))
         .render(popup, buf);
     }

@@ -12,11 +12,11 @@ pub use picture::Picture;
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::Line;
 use ratatui::widgets::{Block, BorderType, Paragraph, Widget};
 
 use super::app::{App, Mode};
+use super::theme;
 use crate::render::Algorithm;
 
 /// Smallest terminal that shows the editor, columns × rows.
@@ -68,23 +68,14 @@ pub fn compare_panes(picture: Rect) -> [(Algorithm, Rect, Rect); 3] {
 
 /// A bordered block titled `title`, highlighted when `focused`.
 pub(super) fn pane(title: &str, focused: bool) -> Block<'_> {
-    let style = if focused {
-        Style::new().fg(Color::Yellow)
+    let (border, title_style, border_type) = if focused {
+        (theme::ACCENT, theme::ACCENT_TITLE, BorderType::Thick)
     } else {
-        Style::new().fg(Color::DarkGray)
-    };
-    let title_style = if focused {
-        style.add_modifier(Modifier::BOLD)
-    } else {
-        Style::new()
+        (theme::DIM, theme::PLAIN, BorderType::Plain)
     };
     Block::bordered()
-        .border_type(if focused {
-            BorderType::Thick
-        } else {
-            BorderType::Plain
-        })
-        .border_style(style)
+        .border_type(border_type)
+        .border_style(border)
         .title(Line::styled(format!(" {title} "), title_style))
 }
 

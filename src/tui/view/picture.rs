@@ -2,13 +2,13 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Alignment, Rect};
-use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::Line;
 use ratatui::widgets::{Paragraph, Widget};
 
 use super::{compare_panes, millis, pane};
 use crate::tui::app::{App, Focus};
 use crate::tui::preview::{ColorMode, PreviewImage, half_block};
+use crate::tui::theme;
 
 /// An image drawn into cells: cell (c, r) shows pixels (c, 2r) over (c, 2r + 1).
 pub struct Picture<'a> {
@@ -57,7 +57,7 @@ impl Widget for PreviewPane<'_> {
                 };
                 Paragraph::new(text)
                     .alignment(Alignment::Center)
-                    .style(Style::new().add_modifier(Modifier::BOLD))
+                    .style(theme::HEADING)
                     .render(label, buf);
                 if let Some(s) = shot {
                     Picture {
@@ -74,7 +74,7 @@ impl Widget for PreviewPane<'_> {
             }
             .render(inner, buf);
         } else {
-            Paragraph::new(Line::styled("rendering…", Style::new().fg(Color::DarkGray)))
+            Paragraph::new(Line::styled("rendering…", theme::DIM))
                 .alignment(Alignment::Center)
                 .render(inner, buf);
         }

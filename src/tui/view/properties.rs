@@ -2,13 +2,13 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{List, ListItem, ListState, StatefulWidget, Widget};
 
 use super::pane;
 use crate::tui::app::{App, Focus, Mode};
 use crate::tui::fields::Part;
+use crate::tui::theme;
 
 /// Label and value of every property of the selected item.
 pub struct Properties<'a>(pub &'a App);
@@ -28,24 +28,15 @@ impl Widget for Properties<'_> {
             .into_iter()
             .enumerate()
             .map(|(i, key)| {
-                let label = Span::styled(
-                    format!("{:<width$}", key.label(&part)),
-                    Style::new().fg(Color::Gray),
-                );
+                let label = Span::styled(format!("{:<width$}", key.label(&part)), theme::LABEL);
                 match &app.mode {
                     Mode::Edit(line) if i == app.field => {
                         let mut lines = vec![Line::from(vec![
                             label,
-                            Span::styled(
-                                format!("{}▏", line.text),
-                                Style::new().fg(Color::Black).bg(Color::White),
-                            ),
+                            Span::styled(format!("{}▏", line.text), theme::TYPING),
                         ])];
                         if let Some(error) = &line.error {
-                            lines.push(Line::styled(
-                                format!("  ✗ {error}"),
-                                Style::new().fg(Color::Red),
-                            ));
+                            lines.push(Line::styled(format!("  ✗ {error}"), theme::INVALID));
                         }
                         ListItem::new(lines)
                     }
@@ -57,9 +48,9 @@ impl Widget for Properties<'_> {
             })
             .collect();
         let highlight = if focused {
-            Style::new().bg(Color::Yellow).fg(Color::Black)
+            theme::SELECTED
         } else {
-            Style::new()
+            theme::PLAIN
         };
         let list = List::new(items)
             .block(pane("Properties", focused))

@@ -2,13 +2,13 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{List, ListItem, ListState, StatefulWidget, Widget};
 
 use super::pane;
 use crate::tui::app::{App, Focus, Item};
 use crate::tui::text::clean;
+use crate::tui::theme;
 
 /// The list of items, the selected one highlighted.
 pub struct SceneList<'a>(pub &'a App);
@@ -21,12 +21,12 @@ impl Widget for SceneList<'_> {
             .items()
             .into_iter()
             .map(|item| {
-                let (tag, name, color) = match item {
-                    Item::Settings => ("cam", "camera & scene".to_string(), Color::Cyan),
+                let (tag, name, tag_style) = match item {
+                    Item::Settings => ("cam", "camera & scene".to_string(), theme::TAG_SETTINGS),
                     Item::Light(i) => {
                         let l = &app.scene.lights[i];
                         let name = l.name.clone().unwrap_or_else(|| format!("light {}", i + 1));
-                        ("lit", name, Color::Yellow)
+                        ("lit", name, theme::TAG_LIGHT)
                     }
                     Item::Object(i) => {
                         let o = &app.scene.objects[i];
@@ -36,19 +36,19 @@ impl Widget for SceneList<'_> {
                             crate::scene::ShapeKind::Prism => "prm",
                             crate::scene::ShapeKind::Mesh => "obj",
                         };
-                        (tag, o.label().to_string(), Color::Green)
+                        (tag, o.label().to_string(), theme::TAG_OBJECT)
                     }
                 };
                 ListItem::new(Line::from(vec![
-                    Span::styled(format!("{tag} "), Style::new().fg(color)),
+                    Span::styled(format!("{tag} "), tag_style),
                     Span::raw(clean(&name)),
                 ]))
             })
             .collect();
         let highlight = if focused {
-            Style::new().bg(Color::Yellow).fg(Color::Black)
+            theme::SELECTED
         } else {
-            Style::new().add_modifier(Modifier::REVERSED)
+            theme::SELECTED_UNFOCUSED
         };
         let list = List::new(items)
             .block(pane("Scene", focused))

@@ -3,13 +3,13 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Gauge, Paragraph, Widget};
 
 use super::millis;
 use crate::tui::app::{App, Focus, Mode, Tone};
 use crate::tui::text::clean;
+use crate::tui::theme;
 
 /// Two lines at the bottom of the screen.
 pub struct StatusBar<'a>(pub &'a App);
@@ -39,16 +39,13 @@ impl Widget for StatusBar<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let app = self.0;
         let [top, bottom] = Layout::vertical([Constraint::Length(1); 2]).areas(area);
-        let sep = || Span::styled(" │ ", Style::new().fg(Color::DarkGray));
+        let sep = || Span::styled(" │ ", theme::DIM);
         let algorithm = if app.compare {
             "Compare".to_string()
         } else {
             app.algorithm.to_string()
         };
-        let mut spans = vec![Span::styled(
-            format!(" {algorithm}"),
-            Style::new().fg(Color::Cyan).add_modifier(Modifier::BOLD),
-        )];
+        let mut spans = vec![Span::styled(format!(" {algorithm}"), theme::ALGORITHM)];
         if let Some(shot) = &app.shot
             && !app.compare
         {
@@ -64,13 +61,13 @@ impl Widget for StatusBar<'_> {
         }
         spans.push(sep());
         if app.dirty {
-            spans.push(Span::styled("● modified ", Style::new().fg(Color::Yellow)));
+            spans.push(Span::styled("● modified ", theme::WARNING));
         }
         spans.push(Span::raw(app.title()));
         if let Some(status) = &app.status {
             let style = match status.tone {
-                Tone::Info => Style::new().fg(Color::Green),
-                Tone::Error => Style::new().fg(Color::Red).add_modifier(Modifier::BOLD),
+                Tone::Info => theme::INFO,
+                Tone::Error => theme::ERROR,
             };
             spans.extend([sep(), Span::styled(clean(&status.text), style)]);
         }
@@ -83,7 +80,7 @@ impl Widget for StatusBar<'_> {
                         .areas(top);
                 Paragraph::new(line).render(text, buf);
                 Gauge::default()
-                    .gauge_style(Style::new().fg(Color::Magenta).bg(Color::Black))
+                    .gauge_style(theme::PROGRESS)
                     .ratio(job.progress.fraction().clamp(0.0, 1.0))
                     .label(format!(
                         "export {:.0}% · {} s · Esc",
@@ -94,10 +91,6 @@ impl Widget for StatusBar<'_> {
             }
             None => Paragraph::new(line).render(top, buf),
         }
-        Paragraph::new(Line::styled(
-            format!(" {}", hints(app)),
-            Style::new().fg(Color::DarkGray),
-        ))
-        .render(bottom, buf);
+        Paragraph::new(Line::styled(format!(" {}", hints(app)), theme::DIM)).render(bottom, buf);
     }
 }
