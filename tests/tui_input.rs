@@ -5,8 +5,11 @@ use std::path::PathBuf;
 use rastray::render::Algorithm;
 use rastray::scene::default_scene;
 use rastray::tui::action::Action;
-use rastray::tui::app::{App, Focus, LineEdit, Mode};
+use rastray::tui::app::App;
 use rastray::tui::input::map;
+use rastray::tui::mode::Mode;
+use rastray::tui::selection::Focus;
+use rastray::tui::update::apply;
 use ratatui::crossterm::event::{
     Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
@@ -24,7 +27,9 @@ fn plain(c: char) -> Event {
 
 fn app(focus: Focus) -> App {
     let mut app = App::new(default_scene(), None, PathBuf::from("."));
-    app.focus = focus;
+    while app.focus() != focus {
+        apply(&mut app, Action::FocusNext);
+    }
     app
 }
 
@@ -79,7 +84,8 @@ fn arrows_depend_on_the_pane() {
 #[test]
 fn typing_mode_sends_characters() {
     let mut a = app(Focus::Properties);
-    a.mode = Mode::Edit(LineEdit::new("1"));
+    apply(&mut a, Action::Edit);
+    assert!(matches!(a.mode(), Mode::Edit(_)));
     assert_eq!(map(&a, &plain('q'), PREVIEW), Some(Action::Input('q')));
     assert_eq!(
         map(&a, &key(KeyCode::Esc, KeyModifiers::NONE), PREVIEW),
@@ -117,7 +123,7 @@ fn mouse_drags_and_wheel_on_the_preview_only() {
             row: 10
         })
     );
-    let before = a.scene.camera;
+    let before = a.view().camera();
     for action in [
         Action::DragStart {
             column: 50,
@@ -129,8 +135,17 @@ fn mouse_drags_and_wheel_on_the_preview_only() {
         },
         Action::DragEnd,
     ] {
-        rastray::tui::update::apply(&mut a, action);
+        apply(&mut a, action);
     }
-    assert_ne!(a.scene.camera.position, before.position, "dragging orbits");
-    assert_eq!(a.scene.camera.target, before.target);
+    assert_ne!(
+        a.view().camera().position,
+        before.position,
+        "dragging orbits"
+    );
+    assert_eq!(a.view().camera().target, before.target);
+    assert_eq!(
+        a.document().scene().camera,
+        before,
+        "the scene's camera stays"
+    );
 }

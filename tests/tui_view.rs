@@ -8,10 +8,12 @@ use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, render};
 use rastray::scene::default_scene;
 use rastray::tui::action::Action;
-use rastray::tui::app::{App, Focus, Shot};
+use rastray::tui::app::App;
 use rastray::tui::preview::{ColorMode, PreviewImage, halves_match, nearest_256};
+use rastray::tui::selection::{Focus, Item};
 use rastray::tui::update::apply;
 use rastray::tui::view::{Picture, layout};
+use rastray::tui::worker::{RenderReply, Slot};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
@@ -38,10 +40,7 @@ fn stripes(width: u32, height: u32) -> PreviewImage {
 }
 
 fn app() -> App {
-    let mut app = App::new(default_scene(), None, PathBuf::from("."));
-    app.show_timings = false;
-    app.triangles = Some(112);
-    app
+    App::new(default_scene(), None, PathBuf::from(".")).with_timings(false)
 }
 
 fn draw(app: &App, width: u16, height: u16) -> Terminal<TestBackend> {
@@ -61,19 +60,32 @@ fn screen_text(terminal: &Terminal<TestBackend>) -> String {
         .collect()
 }
 
+/// A frame of a 112-triangle world from the render worker, for `slot`.
+fn frame(slot: Slot, cells: Rect) -> Action {
+    Action::Rendered(Box::new(RenderReply::Shot {
+        id: 1,
+        slot,
+        image: stripes(cells.width as u32, 2 * cells.height as u32),
+        millis: 1.0,
+        triangles: 112,
+        last: true,
+    }))
+}
+
 /// Gives the app previews of the sizes its layout asks for.
 fn fill_previews(app: &mut App, width: u16, height: u16) {
     let areas = layout(Rect::new(0, 0, width, height), app).unwrap();
     let p = areas.picture;
-    app.shot = Some(Shot {
-        image: stripes(p.width as u32, 2 * p.height as u32),
-        millis: 1.0,
-    });
+    apply(app, frame(Slot::Main, p));
     for (i, (_, _, image)) in rastray::tui::view::compare_panes(p).into_iter().enumerate() {
-        app.compare_shots[i] = Some(Shot {
-            image: stripes(image.width as u32, 2 * image.height as u32),
-            millis: 1.0,
-        });
+        apply(app, frame(Slot::Compare(i), image));
+    }
+}
+
+/// Presses Tab until `focus` has the keys.
+fn focus(app: &mut App, focus: Focus) {
+    while app.focus() != focus {
+        apply(app, Action::FocusNext);
     }
 }
 
@@ -88,9 +100,13 @@ fn main_layout() {
 fn properties_of_an_object_while_typing_a_bad_value() {
     let mut app = app();
     fill_previews(&mut app, 100, 30);
-    app.selected = app.index_of(rastray::tui::app::Item::Object(1));
-    app.focus = Focus::Properties;
-    app.field = 4; // radius
+    while app.item() != Item::Object(1) {
+        apply(&mut app, Action::Down);
+    }
+    focus(&mut app, Focus::Properties);
+    for _ in 0..4 {
+        apply(&mut app, Action::Down); // to the radius
+    }
     for a in [
         Action::Edit,
         Action::ClearInput,
@@ -125,7 +141,7 @@ fn compare_view() {
     let mut app = app();
     apply(&mut app, Action::ToggleCompare);
     fill_previews(&mut app, 100, 30);
-    app.focus = Focus::Preview;
+    focus(&mut app, Focus::Preview);
     insta::assert_snapshot!(draw(&app, 100, 30).backend());
 }
 
@@ -156,8 +172,9 @@ fn a_tiny_terminal_says_so_without_panicking() {
 
 #[test]
 fn control_characters_in_names_are_not_drawn() {
-    let mut app = app();
-    app.scene.objects[0].name = Some("evil\x1b[2Jname\x07".into());
+    let mut scene = default_scene();
+    scene.objects[0].name = Some("evil\x1b[2Jname\x07".into());
+    let app = App::new(scene, None, PathBuf::from("."));
     let text = screen_text(&draw(&app, 100, 30));
     assert!(text.contains("evil[2Jname"));
     assert!(!text.contains('\x1b') && !text.contains('\x07'));

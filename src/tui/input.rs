@@ -7,7 +7,9 @@ use ratatui::crossterm::event::{
 use ratatui::layout::{Position, Rect};
 
 use super::action::Action;
-use super::app::{AddKind, App, Focus, Mode};
+use super::app::App;
+use super::mode::{AddKind, Mode};
+use super::selection::Focus;
 use crate::render::Algorithm;
 
 /// Degrees per orbit key press.
@@ -98,7 +100,7 @@ fn normal_key(app: &App, key: &KeyEvent, ctrl: bool) -> Option<Action> {
         _ => None,
     };
     if let Some((dx, dy, big)) = direction {
-        return Some(match app.focus {
+        return Some(match app.focus() {
             Focus::Preview if big => Action::Pan {
                 right: -dx as f32 * PAN_STEP,
                 up: dy as f32 * PAN_STEP,
@@ -134,6 +136,7 @@ fn normal_key(app: &App, key: &KeyEvent, ctrl: bool) -> Option<Action> {
         KeyCode::Char('o') => Action::Open,
         KeyCode::Char('e') => Action::Export,
         KeyCode::Char('r') | KeyCode::Home => Action::ResetView,
+        KeyCode::Char('C') => Action::SceneCameraFromView,
         KeyCode::Char('[') => Action::Orbit {
             yaw: ORBIT_STEP,
             pitch: 0.0,

@@ -61,7 +61,16 @@ pub const KEYS: &[KeyHelp] = &[
         "orbit the camera left, right, up, down",
     ),
     k("anywhere", "+ / -", "zoom in / out"),
-    k("anywhere", "r / Home", "reset the view"),
+    k(
+        "anywhere",
+        "r / Home",
+        "reset the view to the scene's camera",
+    ),
+    k(
+        "anywhere",
+        "C",
+        "set the scene's camera from the view (an undoable edit)",
+    ),
     k("anywhere", "?", "this help"),
     k(
         "anywhere",

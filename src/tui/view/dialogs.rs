@@ -6,7 +6,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Clear, List, ListItem, ListState, Paragraph, StatefulWidget, Widget, Wrap};
 
 use super::pane;
-use crate::tui::app::{AddKind, ExportField, ExportForm, LineEdit, PromptPurpose};
+use crate::tui::mode::{AddKind, ExportField, ExportForm, LineEdit, PromptPurpose};
 use crate::tui::theme;
 
 /// A `width`×`height` rectangle centred in `area`, clipped to it.

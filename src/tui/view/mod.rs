@@ -15,7 +15,8 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::Line;
 use ratatui::widgets::{Block, BorderType, Paragraph, Widget};
 
-use super::app::{App, Mode};
+use super::app::App;
+use super::mode::Mode;
 use super::theme;
 use crate::render::Algorithm;
 
@@ -81,7 +82,7 @@ pub(super) fn pane(title: &str, focused: bool) -> Block<'_> {
 
 /// Milliseconds as shown next to a frame, or nothing when timings are hidden.
 pub(super) fn millis(app: &App, ms: f64) -> String {
-    if app.show_timings {
+    if app.view.show_timings() {
         format!("{ms:.1} ms")
     } else {
         "– ms".into()
@@ -107,7 +108,7 @@ impl Widget for &App {
             Mode::Help(scroll) => help::HelpOverlay(*scroll).render(area, buf),
             Mode::AddMenu(index) => dialogs::AddMenu(*index).render(area, buf),
             Mode::Prompt(purpose, line) => {
-                dialogs::Prompt(*purpose, line, self.dirty).render(area, buf)
+                dialogs::Prompt(*purpose, line, self.doc.is_dirty()).render(area, buf)
             }
             Mode::Export(form) => dialogs::ExportDialog(form).render(area, buf),
             Mode::ConfirmQuit => dialogs::ConfirmQuit.render(area, buf),

@@ -6,7 +6,8 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{List, ListItem, ListState, StatefulWidget, Widget};
 
 use super::pane;
-use crate::tui::app::{App, Focus, Item};
+use crate::tui::app::App;
+use crate::tui::selection::{Focus, Item};
 use crate::tui::text::clean;
 use crate::tui::theme;
 
@@ -16,7 +17,8 @@ pub struct SceneList<'a>(pub &'a App);
 impl Widget for SceneList<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let app = self.0;
-        let focused = app.focus == Focus::List;
+        let focused = app.focus() == Focus::List;
+        let scene = app.doc.scene();
         let items: Vec<ListItem> = app
             .items()
             .into_iter()
@@ -24,12 +26,12 @@ impl Widget for SceneList<'_> {
                 let (tag, name, tag_style) = match item {
                     Item::Settings => ("cam", "camera & scene".to_string(), theme::TAG_SETTINGS),
                     Item::Light(i) => {
-                        let l = &app.scene.lights[i];
+                        let l = &scene.lights[i];
                         let name = l.name.clone().unwrap_or_else(|| format!("light {}", i + 1));
                         ("lit", name, theme::TAG_LIGHT)
                     }
                     Item::Object(i) => {
-                        let o = &app.scene.objects[i];
+                        let o = &scene.objects[i];
                         let tag = match o.shape.kind() {
                             crate::scene::ShapeKind::Icosahedron => "ico",
                             crate::scene::ShapeKind::Box => "box",
@@ -54,7 +56,7 @@ impl Widget for SceneList<'_> {
             .block(pane("Scene", focused))
             .highlight_style(highlight)
             .highlight_symbol("▶");
-        let mut state = ListState::default().with_selected(Some(app.selected));
+        let mut state = ListState::default().with_selected(Some(app.selection.item()));
         StatefulWidget::render(list, area, buf, &mut state);
     }
 }

@@ -7,7 +7,9 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Gauge, Paragraph, Widget};
 
 use super::millis;
-use crate::tui::app::{App, Focus, Mode, Tone};
+use crate::tui::app::{App, Tone};
+use crate::tui::mode::Mode;
+use crate::tui::selection::Focus;
 use crate::tui::text::clean;
 use crate::tui::theme;
 
@@ -16,7 +18,7 @@ pub struct StatusBar<'a>(pub &'a App);
 
 /// The keys worth showing for the current mode and pane.
 pub fn hints(app: &App) -> &'static str {
-    match (&app.mode, app.focus) {
+    match (&app.mode, app.focus()) {
         (Mode::Edit(_), _) => "type a value · Enter accept · Esc cancel · Ctrl-u clear",
         (Mode::Prompt(..), _) => "type a path · Enter accept · Esc cancel",
         (Mode::Export(_), _) => "↑↓ field · ←→ algorithm · Enter export · Esc cancel",
@@ -40,14 +42,15 @@ impl Widget for StatusBar<'_> {
         let app = self.0;
         let [top, bottom] = Layout::vertical([Constraint::Length(1); 2]).areas(area);
         let sep = || Span::styled(" │ ", theme::DIM);
-        let algorithm = if app.compare {
+        let compare = app.view.compare();
+        let algorithm = if compare {
             "Compare".to_string()
         } else {
-            app.algorithm.to_string()
+            app.view.algorithm().to_string()
         };
         let mut spans = vec![Span::styled(format!(" {algorithm}"), theme::ALGORITHM)];
-        if let Some(shot) = &app.shot
-            && !app.compare
+        if let Some(shot) = &app.previews.shot
+            && !compare
         {
             spans.extend([
                 sep(),
@@ -56,11 +59,11 @@ impl Widget for StatusBar<'_> {
                 Span::raw(format!("{}×{} px", shot.image.width, shot.image.height)),
             ]);
         }
-        if let Some(t) = app.triangles {
+        if let Some(t) = app.previews.triangles {
             spans.extend([sep(), Span::raw(format!("{t} tris"))]);
         }
         spans.push(sep());
-        if app.dirty {
+        if app.doc.is_dirty() {
             spans.push(Span::styled("● modified ", theme::WARNING));
         }
         spans.push(Span::raw(app.title()));
