@@ -271,3 +271,51 @@ fn palette_picks_greys_for_greys() {
     assert_eq!(nearest_256([0, 0, 255]), 21);
     assert_eq!(nearest_256([95, 135, 175]), 16 + 36 + 12 + 3);
 }
+
+#[test]
+fn the_help_shows_every_row_of_the_key_table_whole() {
+    let mut app = app();
+    fill_previews(&mut app, 110, 36);
+    apply(&mut app, Action::Help);
+    let mut screens = String::new();
+    for _ in 0..rastray::tui::keys::KEYS.len() {
+        let terminal = draw(&app, 110, 36);
+        let buffer = terminal.backend().buffer();
+        for y in 0..36 {
+            let line: String = (0..110).map(|x| buffer[(x, y)].symbol()).collect();
+            screens.push_str(&line);
+            screens.push('\n');
+        }
+        apply(&mut app, Action::Down);
+    }
+    for row in rastray::tui::keys::KEYS {
+        let line = format!("{} ", row.keys());
+        assert!(
+            screens
+                .lines()
+                .any(|l| l.contains(&line) && l.contains(row.what)),
+            "`{}` | {} is not shown whole",
+            row.keys(),
+            row.what
+        );
+    }
+}
+
+#[test]
+fn the_preview_says_when_the_view_left_the_scene_camera() {
+    let mut app = app();
+    fill_previews(&mut app, 100, 30);
+    let title = |app: &App| screen_text(&draw(app, 100, 30));
+    assert!(!title(&app).contains("view moved"));
+    apply(
+        &mut app,
+        Action::Orbit {
+            yaw: 5.0,
+            pitch: 0.0,
+        },
+    );
+    assert!(title(&app).contains("Preview · Phong · view moved, C keeps it"));
+    apply(&mut app, Action::SceneCameraFromView);
+    assert!(!title(&app).contains("view moved"));
+    assert!(title(&app).contains("● modified"));
+}

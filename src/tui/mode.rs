@@ -87,17 +87,6 @@ impl AddKind {
         AddKind::Mesh,
     ];
 
-    /// The menu's hotkey.
-    pub fn hotkey(self) -> char {
-        match self {
-            AddKind::Icosahedron => 'i',
-            AddKind::Box => 'b',
-            AddKind::Prism => 'p',
-            AddKind::Light => 'l',
-            AddKind::Mesh => 'm',
-        }
-    }
-
     /// The menu's text.
     pub fn label(self) -> &'static str {
         match self {

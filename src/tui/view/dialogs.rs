@@ -6,6 +6,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Clear, List, ListItem, ListState, Paragraph, StatefulWidget, Widget, Wrap};
 
 use super::pane;
+use crate::tui::keys::add_hotkey;
 use crate::tui::mode::{AddKind, ExportField, ExportForm, LineEdit, PromptPurpose};
 use crate::tui::theme;
 
@@ -41,7 +42,10 @@ impl Widget for AddMenu {
         Clear.render(popup, buf);
         let items: Vec<ListItem> = AddKind::ALL
             .iter()
-            .map(|k| ListItem::new(format!("{}  {}", k.hotkey(), k.label())))
+            .map(|&k| {
+                let hotkey = add_hotkey(k).unwrap_or(' ');
+                ListItem::new(format!("{hotkey}  {}", k.label()))
+            })
             .collect();
         let list = List::new(items)
             .block(pane("Add", true))

@@ -42,11 +42,15 @@ impl Widget for PreviewPane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let app = self.0;
         let view = &app.view;
-        let title = if view.compare() {
+        let mut title = if view.compare() {
             "Preview · compare".to_string()
         } else {
             format!("Preview · {}", view.algorithm())
         };
+        if view.camera() != app.doc.scene().camera {
+            // Looking around is not saved: say how to keep it.
+            title.push_str(" · view moved, C keeps it");
+        }
         let block = pane(&title, app.focus() == Focus::Preview);
         let inner = block.inner(area);
         block.render(area, buf);

@@ -32,7 +32,7 @@ pub fn hints(app: &App) -> &'static str {
             "↑↓ property · ←→ step (Shift ×10) · Enter type · u undo · Tab pane · ? help · q quit"
         }
         (Mode::Normal, Focus::Preview) => {
-            "←→↑↓ orbit · Shift pan · +/- zoom · r reset · drag/wheel · 1 2 3 algo · c compare · ? help"
+            "←→↑↓ orbit · Shift pan · +/- zoom · r reset · C set camera · 1 2 3 algo · c compare · ? help"
         }
     }
 }
