@@ -9,8 +9,11 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::scene::default_scene;
-use rastray::tui::app::{App, Shot};
+use rastray::tui::action::Action;
+use rastray::tui::app::App;
 use rastray::tui::preview::PreviewImage;
+use rastray::tui::update::apply;
+use rastray::tui::worker::{RenderReply, Slot};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 
@@ -21,7 +24,7 @@ fn preview(c: &mut Criterion) {
     let mut terminal = Terminal::new(TestBackend::new(196, 52)).unwrap();
     let mut app = App::new(scene.clone(), None, PathBuf::from("."));
     for algorithm in [Algorithm::Gouraud, Algorithm::Phong, Algorithm::Ray] {
-        app.algorithm = algorithm;
+        apply(&mut app, Action::Algorithm(algorithm));
         let options = RenderOptions::new(algorithm, 160, 96);
         c.bench_function(
             &format!("preview 160x48 cells {algorithm}: render+draw"),
@@ -31,10 +34,15 @@ fn preview(c: &mut Criterion) {
                     Renderer::new(options)
                         .render(&world, &scene.camera, &Progress::new(), &mut frame)
                         .unwrap();
-                    app.shot = Some(Shot {
+                    let shot = RenderReply::Shot {
+                        id: 1,
+                        slot: Slot::Main,
                         image: PreviewImage::from_frame(&frame),
                         millis: 0.0,
-                    });
+                        triangles: world.triangle_count(),
+                        last: true,
+                    };
+                    apply(&mut app, Action::Rendered(Box::new(shot)));
                     terminal.draw(|f| f.render_widget(&app, f.area())).unwrap();
                 })
             },
