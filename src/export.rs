@@ -1,13 +1,19 @@
-//! PNG export: 8-bit sRGB, written atomically.
+//! PNG export: 8-bit sRGB, written atomically; and the one function that renders a world
+//! straight to a PNG file.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use crate::atomic_file::write_atomically;
-use crate::render::Frame;
+use crate::render::{Frame, Progress, RenderError, RenderOptions, RenderStats, Renderer};
+use crate::scene::Camera;
+use crate::world::World;
 
-/// Why a PNG could not be written.
+/// Why a PNG could not be rendered or written.
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
+    #[error(transparent)]
+    Render(#[from] RenderError),
     #[error("{path}: cannot encode PNG: {message}")]
     Encode {
         path: std::path::PathBuf,
@@ -45,4 +51,20 @@ pub fn save_png(frame: &Frame, path: &Path) -> Result<(), ExportError> {
         path: path.to_path_buf(),
         error,
     })
+}
+
+/// Renders `world` seen by `camera` with `options` and writes the image to `path` as a PNG,
+/// atomically: `rastray render` and the editor's export both come here. `progress` follows the
+/// render and cancels it; the PNG is written only when the render finished.
+pub fn render_to_png(
+    world: &Arc<World>,
+    camera: &Camera,
+    options: &RenderOptions,
+    path: &Path,
+    progress: &Progress,
+) -> Result<RenderStats, ExportError> {
+    let mut frame = Frame::default();
+    let stats = Renderer::new(*options).render(world, camera, progress, &mut frame)?;
+    save_png(&frame, path)?;
+    Ok(stats)
 }

@@ -1,8 +1,29 @@
 //! rastray: build small 3D scenes, render them with a Z-buffer (Gouraud or Phong shading) or a
 //! Whitted ray tracer, and compare the three.
 //!
-//! The pipeline is `Scene` (TOML model) → [`World`] (world-space face lists with normals) →
-//! [`render::render`] → [`render::Frame`] (linear RGB) → PNG or terminal preview.
+//! The pipeline is [`Scene`] (the TOML model, [`scene`]) → [`World`] (world-space face lists
+//! with normals, [`mesh`]) → [`Renderer`] ([`render`]) → [`Frame`] (linear RGB) → PNG
+//! ([`export`]) or the terminal preview ([`tui`]). A renderer prepares a world once (the ray
+//! tracer's BVH) and then renders it from any camera, into a frame you keep:
+//!
+//! ```
+//! use std::{path::Path, sync::Arc};
+//! use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
+//! use rastray::{World, export, scene};
+//!
+//! let path = Path::new("scenes/default.toml");
+//! let scene = scene::load(path)?;
+//! let world = Arc::new(World::build(&scene, path.parent().unwrap())?);
+//! let mut renderer = Renderer::new(RenderOptions::new(Algorithm::Ray, 320, 180));
+//! let mut frame = Frame::default();
+//! let stats = renderer.render(&world, &scene.camera, &Progress::new(), &mut frame)?;
+//! export::save_png(&frame, &std::env::temp_dir().join("rastray-example.png"))?;
+//! println!("{} triangles, {} rays in {:?}", stats.triangles, stats.rays.total(), stats.total());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! [`export::render_to_png`] does the last four lines in one call. `docs/ARCHITECTURE.md` maps
+//! the modules.
 #![forbid(unsafe_code)]
 
 pub mod atomic_file;
@@ -14,6 +35,6 @@ pub mod scene;
 pub mod tui;
 pub mod world;
 
-pub use render::{Algorithm, Frame, RenderOptions, render, render_into};
+pub use render::{Algorithm, Frame, RenderOptions, RenderStats, Renderer};
 pub use scene::Scene;
 pub use world::World;

@@ -1,6 +1,7 @@
 //! Command-line arguments and dispatch. Every user error comes back as an `anyhow` error that
 //! names the file, line or field; `main` prints it and exits with code 2.
 
+mod algorithm_arg;
 mod bench;
 mod info;
 mod render;
@@ -8,7 +9,7 @@ mod render;
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use clap::{Parser, Subcommand};
+use clap::{Parser, Subcommand, ValueEnum};
 use rastray::Scene;
 use rastray::render::Size;
 use rastray::tui::ColorMode;
@@ -24,7 +25,26 @@ pub struct Cli {
     pub scene: Option<PathBuf>,
     /// Colours of the terminal preview (default: truecolor when COLORTERM says so, else 256).
     #[arg(long, value_enum)]
-    pub color: Option<ColorMode>,
+    pub color: Option<ColorArg>,
+}
+
+/// The `--color` values, spelled as users type them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ColorArg {
+    /// 24-bit RGB escape sequences.
+    Truecolor,
+    /// The nearest entry of the xterm 256-colour palette.
+    #[value(name = "256")]
+    Ansi256,
+}
+
+impl From<ColorArg> for ColorMode {
+    fn from(arg: ColorArg) -> ColorMode {
+        match arg {
+            ColorArg::Truecolor => ColorMode::Truecolor,
+            ColorArg::Ansi256 => ColorMode::Ansi256,
+        }
+    }
 }
 
 #[derive(Debug, Subcommand)]
@@ -46,7 +66,10 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Info { scene }) => info::run(&scene),
         Some(Command::Bench(args)) => bench::run_bench(&args),
-        None => rastray::tui::run(cli.scene, cli.color.unwrap_or_else(ColorMode::detect)),
+        None => {
+            let color = cli.color.map_or_else(ColorMode::detect, ColorMode::from);
+            Ok(rastray::tui::run(cli.scene, color)?)
+        }
     }
 }
 
@@ -69,4 +92,29 @@ pub fn load_scene(path: Option<&Path>) -> anyhow::Result<(Scene, PathBuf)> {
 /// Parses WIDTHxHEIGHT for clap.
 pub fn parse_size(s: &str) -> Result<Size, String> {
     s.parse::<Size>().map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn color(args: &[&str]) -> Result<Option<ColorMode>, clap::Error> {
+        let cli = Cli::try_parse_from(std::iter::once("rastray").chain(args.iter().copied()))?;
+        Ok(cli.color.map(ColorMode::from))
+    }
+
+    #[test]
+    fn color_takes_the_documented_spellings() {
+        assert_eq!(
+            color(&["--color", "truecolor"]).unwrap(),
+            Some(ColorMode::Truecolor)
+        );
+        assert_eq!(
+            color(&["--color", "256"]).unwrap(),
+            Some(ColorMode::Ansi256)
+        );
+        assert_eq!(color(&["scene.toml"]).unwrap(), None);
+        let refused = color(&["--color", "ansi256"]).unwrap_err().to_string();
+        assert!(refused.contains("truecolor, 256"), "{refused}");
+    }
 }

@@ -1,13 +1,16 @@
 //! `rastray render`: one scene to one PNG, with the render time and a progress bar for long renders.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use rastray::World;
-use rastray::export::save_png;
-use rastray::render::{Algorithm, Progress, RenderOptions, Size, render};
+use rastray::export::render_to_png;
+use rastray::render::{Algorithm, Progress, RenderOptions, Size};
+
+use super::algorithm_arg::AlgorithmArg;
 
 /// A long render shows a progress bar after this long.
 const PROGRESS_DELAY: Duration = Duration::from_millis(400);
@@ -17,8 +20,8 @@ pub struct RenderArgs {
     /// Scene file (TOML); the built-in default scene when absent.
     pub scene: Option<PathBuf>,
     /// Algorithm.
-    #[arg(short, long, value_enum, default_value_t = Algorithm::Phong)]
-    pub algorithm: Algorithm,
+    #[arg(short, long, value_enum, default_value_t = AlgorithmArg(Algorithm::Phong))]
+    pub algorithm: AlgorithmArg,
     /// Image size, WIDTHxHEIGHT.
     #[arg(short, long, default_value = "1920x1080", value_parser = super::parse_size)]
     pub size: Size,
@@ -39,25 +42,21 @@ pub struct RenderArgs {
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let (scene, base) = super::load_scene(args.scene.as_deref())?;
     let options = RenderOptions {
-        algorithm: args.algorithm,
-        width: args.size.width,
-        height: args.size.height,
         samples: args.samples,
         shadows: !args.no_shadows,
         max_depth: args.max_depth,
+        ..RenderOptions::new(args.algorithm.0, args.size.width, args.size.height)
     };
     options.check()?;
-    let world = World::build(&scene, &base)?;
+    let world = Arc::new(World::build(&scene, &base)?);
     if world.lights.is_empty() {
         eprintln!("warning: the scene has no lights; only ambient light will show");
     }
     let progress = Progress::new();
     let started = Instant::now();
-    let (frame, elapsed) = std::thread::scope(|s| {
-        let job = s.spawn(|| {
-            let frame = render(&world, &scene.camera, &options, &progress);
-            (frame, started.elapsed())
-        });
+    let stats = std::thread::scope(|s| {
+        let job =
+            s.spawn(|| render_to_png(&world, &scene.camera, &options, &args.output, &progress));
         let mut bar: Option<ProgressBar> = None;
         while !job.is_finished() {
             std::thread::sleep(Duration::from_millis(5));
@@ -82,17 +81,16 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
         job.join().expect("the render thread does not panic")
     });
-    let frame = frame?;
-    save_png(&frame, &args.output)?;
+    let stats = stats?;
     println!(
         "{} {}x{} ({}x{} samples, {} triangles) rendered in {:.1} ms; wrote {}",
         options.algorithm,
-        frame.width,
-        frame.height,
+        options.width,
+        options.height,
         options.samples,
         options.samples,
-        world.triangle_count(),
-        elapsed.as_secs_f64() * 1000.0,
+        stats.triangles,
+        stats.total().as_secs_f64() * 1000.0,
         args.output.display()
     );
     Ok(())

@@ -28,18 +28,6 @@ impl Frame {
         self.pixels[y as usize * self.width as usize + x as usize]
     }
 
-    /// A `width`×`height` frame whose every pixel `draw` writes.
-    pub fn drawn<E>(
-        width: u32,
-        height: u32,
-        draw: impl FnOnce(&mut [Vec3]) -> Result<(), E>,
-    ) -> Result<Frame, E> {
-        let mut frame = Frame::default();
-        frame.reshape(width, height);
-        draw(&mut frame.pixels)?;
-        Ok(frame)
-    }
-
     /// Makes this a `width`×`height` frame whose pixels are about to be overwritten: the buffer
     /// is kept when it has that size already, else replaced by zeroed memory, whose pages the
     /// render threads then fault in as they write, in parallel.

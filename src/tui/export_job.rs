@@ -6,8 +6,8 @@ use std::thread::JoinHandle;
 use std::time::Instant;
 
 use crate::World;
-use crate::export::save_png;
-use crate::render::{Progress, RenderOptions, render};
+use crate::export::render_to_png;
+use crate::render::{Progress, RenderOptions};
 use crate::scene::Scene;
 
 /// An export in progress.
@@ -36,9 +36,8 @@ impl ExportJob {
         let (p, out, base) = (progress.clone(), path.clone(), base_dir.to_path_buf());
         let handle = std::thread::spawn(move || {
             let started = Instant::now();
-            let world = World::build(&scene, &base).map_err(|e| e.to_string())?;
-            let frame = render(&world, &scene.camera, &options, &p).map_err(|e| e.to_string())?;
-            save_png(&frame, &out).map_err(|e| e.to_string())?;
+            let world = Arc::new(World::build(&scene, &base).map_err(|e| e.to_string())?);
+            render_to_png(&world, &scene.camera, &options, &out, &p).map_err(|e| e.to_string())?;
             Ok(started.elapsed().as_secs_f64() * 1000.0)
         });
         ExportJob {

@@ -2,22 +2,31 @@
 //!
 //! Keys become [`action::Action`]s ([`input`]), actions change the [`app::App`] in one place
 //! ([`update`]), widgets draw it ([`view`]), and a worker thread renders the preview ([`worker`]).
+//! The app owns a [`document::Document`] (what is saved) and a [`view_state::ViewState`] (where
+//! the preview looks from): looking around never edits the scene.
 
 pub mod action;
 pub mod app;
+pub mod document;
+pub mod error;
 pub mod export_job;
 pub mod fields;
 pub mod input;
 pub mod keys;
+pub mod mode;
 pub mod orbit;
 pub mod preview;
 pub mod recovery;
+pub mod selection;
 pub mod terminal;
 pub mod text;
+pub mod theme;
 pub mod update;
 pub mod view;
+pub mod view_state;
 pub mod worker;
 
+pub use error::TuiError;
 pub use preview::ColorMode;
 
 use std::io::Write;
@@ -27,7 +36,6 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, Sender, channel};
 use std::time::{Duration, Instant};
 
-use anyhow::Context;
 use ratatui::crossterm::event::{self, Event as TermEvent};
 use ratatui::layout::Rect;
 use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
@@ -50,30 +58,27 @@ enum Event {
 /// Runs the editor on the scene at `scene_path` (the built-in scene when `None`) until the user
 /// quits or the process receives SIGTERM, SIGHUP or SIGINT; unsaved edits then go to the
 /// recovery file.
-pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> {
-    let mut app = load(scene_path.as_deref())?;
-    app.color = color;
+pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<(), TuiError> {
+    let mut app = load(scene_path.as_deref())?.with_color(color);
     if let Some(notice) = recovery::notice(scene_path.as_deref()) {
         app.info(notice);
     }
     let signalled = Arc::new(AtomicBool::new(false));
     // Raw mode turns Ctrl-C into a key, so SIGINT only comes from `kill`: treat it like SIGTERM.
     for signal in [SIGTERM, SIGHUP, SIGINT] {
-        signal_hook::flag::register(signal, signalled.clone()).context("cannot watch signals")?;
+        signal_hook::flag::register(signal, signalled.clone()).map_err(TuiError::Signals)?;
     }
     let (tx, rx) = channel();
     spawn_input(tx.clone());
     let worker = Worker::spawn(move |reply| {
         let _ = tx.send(Event::Render(reply));
     });
-    let mut guard = TerminalGuard::enter().context(
-        "cannot set up the terminal (the editor needs one; `rastray render` works without)",
-    )?;
+    let mut guard = TerminalGuard::enter().map_err(TuiError::TerminalSetup)?;
     let mut state = Loop {
         worker,
         sent: None,
         latest: 0,
-        scene: (u64::MAX, Arc::new(app.scene.clone())),
+        scene: (u64::MAX, Arc::new(app.doc.scene().clone())),
         latency: LatencyLog::from_env(),
         pending: None,
     };
@@ -95,7 +100,7 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
             Err(RecvTimeoutError::Timeout) => None,
             Err(RecvTimeoutError::Disconnected) => break,
         };
-        redraw = first.is_none() && app.export.is_some();
+        redraw = first.is_none() && app.is_exporting();
         // Handle everything already queued before drawing again: a held key draws once.
         for event in first
             .into_iter()
@@ -124,8 +129,8 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
         update::apply(&mut app, Action::Tick);
         if signalled.load(Ordering::Relaxed) {
             drop(guard);
-            if app.dirty {
-                let path = recovery::write(&app.scene, app.path.as_deref())?;
+            if app.doc.is_dirty() {
+                let path = recovery::write(app.doc.scene(), app.doc.path())?;
                 eprintln!("rastray: unsaved edits written to {}", path.display());
             }
             return Ok(());
@@ -137,23 +142,22 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
 /// The app on the scene at `path`, or on the built-in scene.
 /// The editor on the scene at `path`; a path that does not exist yet starts a new scene there
 /// from the built-in one (written on the first save), as text editors do with a new file name.
-fn load(path: Option<&Path>) -> anyhow::Result<App> {
+fn load(path: Option<&Path>) -> Result<App, TuiError> {
     Ok(match path {
         Some(p) if !p.exists() => {
-            let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
+            let base = document::folder_of(p);
             let mut app = App::new(crate::scene::default_scene(), Some(p.to_path_buf()), base);
             app.info(format!("new scene {}: s saves it", p.display()));
             app
         }
         Some(p) => {
             let scene = crate::scene::load(p)?;
-            let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
-            App::new(scene, Some(p.to_path_buf()), base)
+            App::new(scene, Some(p.to_path_buf()), document::folder_of(p))
         }
         None => App::new(
             crate::scene::default_scene(),
             None,
-            std::env::current_dir().context("no working directory")?,
+            std::env::current_dir().map_err(TuiError::WorkingDirectory)?,
         ),
     })
 }
@@ -182,20 +186,20 @@ pub fn wanted(app: &App, picture: Rect) -> Option<Wanted> {
             height: 2 * area.height as u32,
         })
     };
-    let jobs: Vec<Job> = if app.compare {
+    let jobs: Vec<Job> = if app.view.compare() {
         view::compare_panes(picture)
             .into_iter()
             .enumerate()
             .filter_map(|(i, (algorithm, _, image))| job(Slot::Compare(i), algorithm, image))
             .collect()
     } else {
-        job(Slot::Main, app.algorithm, picture)
+        job(Slot::Main, app.view.algorithm(), picture)
             .into_iter()
             .collect()
     };
     (!jobs.is_empty()).then_some(Wanted {
-        generation: app.generation,
-        camera: app.scene.camera,
+        generation: app.doc.generation(),
+        camera: app.view.camera(),
         jobs,
     })
 }
@@ -229,13 +233,16 @@ impl Loop {
         let Some(wanted) = wanted.filter(|w| self.sent.as_ref() != Some(w)) else {
             return;
         };
-        if self.scene.0 != app.generation {
-            self.scene = (app.generation, Arc::new(app.scene.clone()));
+        let generation = app.doc.generation();
+        if self.scene.0 != generation {
+            self.scene = (generation, Arc::new(app.doc.scene().clone()));
         }
         self.sent = Some(wanted.clone());
-        let id = self
-            .worker
-            .request(wanted, self.scene.1.clone(), app.base_dir.clone());
+        let id = self.worker.request(
+            wanted,
+            self.scene.1.clone(),
+            app.doc.base_dir().to_path_buf(),
+        );
         self.latest = id;
         self.pending = key_at.map(|key_at| Pending {
             id,

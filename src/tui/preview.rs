@@ -3,16 +3,16 @@
 
 use ratatui::style::Color;
 
+use super::theme::TERMINAL_DEFAULT;
 use crate::render::Frame;
 
 /// How colours reach the terminal.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ColorMode {
     /// 24-bit RGB escape sequences.
     #[default]
     Truecolor,
     /// The nearest entry of the xterm 256-colour palette.
-    #[value(name = "256")]
     Ansi256,
 }
 
@@ -99,18 +99,18 @@ pub fn half_block(upper: Option<[u8; 3]>, lower: Option<[u8; 3]>, mode: ColorMod
     match (upper, lower) {
         (Some(u), Some(l)) if u == l => HalfBlock {
             symbol: " ",
-            fg: Color::Reset,
+            fg: TERMINAL_DEFAULT,
             bg: u,
         },
         (Some(u), l) => HalfBlock {
             symbol: "▀",
             fg: u,
-            bg: l.unwrap_or(Color::Reset),
+            bg: l.unwrap_or(TERMINAL_DEFAULT),
         },
         (None, _) => HalfBlock {
             symbol: " ",
-            fg: Color::Reset,
-            bg: Color::Reset,
+            fg: TERMINAL_DEFAULT,
+            bg: TERMINAL_DEFAULT,
         },
     }
 }

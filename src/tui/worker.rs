@@ -5,12 +5,10 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
-use std::time::Instant;
 
 use super::preview::PreviewImage;
 use crate::World;
-use crate::render::accel::SceneAccel;
-use crate::render::{Algorithm, Progress, RenderError, RenderOptions, render_prepared};
+use crate::render::{Algorithm, Frame, Progress, RenderError, RenderOptions, Renderer};
 use crate::scene::{Camera, Scene};
 use crate::world::ObjCache;
 
@@ -125,8 +123,9 @@ impl Worker {
 fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
     let mut cache = ObjCache::default();
     let mut world: Option<(u64, Arc<World>)> = None;
-    // The ray tracer's BVH of the current world, kept while only the camera moves.
-    let mut accel: Option<(u64, SceneAccel)> = None;
+    // Keeps the ray tracer's BVH of the current world while only the camera moves.
+    let mut renderer: Option<Renderer> = None;
+    let mut frame = Frame::default();
     while let Ok(mut request) = rx.recv() {
         while let Ok(newer) = rx.try_recv() {
             request = newer;
@@ -155,29 +154,16 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
         let count = request.wanted.jobs.len();
         for (n, job) in request.wanted.jobs.iter().enumerate() {
             let options = RenderOptions::new(job.algorithm, job.width, job.height);
-            let started = Instant::now();
-            if job.algorithm == Algorithm::Ray
-                && accel.as_ref().is_none_or(|(g, _)| *g != generation)
-            {
-                accel = Some((generation, SceneAccel::build(&current)));
-            }
-            let prepared = accel
-                .as_ref()
-                .filter(|(g, _)| *g == generation)
-                .map(|(_, a)| a);
-            match render_prepared(
-                &current,
-                prepared,
-                &request.wanted.camera,
-                &options,
-                &request.progress,
-            ) {
-                Ok(frame) => reply(RenderReply::Shot {
+            let renderer = renderer.get_or_insert_with(|| Renderer::new(options));
+            renderer.set_options(options);
+            let camera = &request.wanted.camera;
+            match renderer.render(&current, camera, &request.progress, &mut frame) {
+                Ok(stats) => reply(RenderReply::Shot {
                     id: request.id,
                     slot: job.slot,
                     image: PreviewImage::from_frame(&frame),
-                    millis: started.elapsed().as_secs_f64() * 1000.0,
-                    triangles: current.triangle_count(),
+                    millis: stats.total().as_secs_f64() * 1000.0,
+                    triangles: stats.triangles,
                     last: n + 1 == count,
                 }),
                 Err(RenderError::Cancelled(_)) => break,

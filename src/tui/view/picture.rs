@@ -2,13 +2,14 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Alignment, Rect};
-use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::Line;
 use ratatui::widgets::{Paragraph, Widget};
 
 use super::{compare_panes, millis, pane};
-use crate::tui::app::{App, Focus};
+use crate::tui::app::App;
 use crate::tui::preview::{ColorMode, PreviewImage, half_block};
+use crate::tui::selection::Focus;
+use crate::tui::theme;
 
 /// An image drawn into cells: cell (c, r) shows pixels (c, 2r) over (c, 2r + 1).
 pub struct Picture<'a> {
@@ -40,41 +41,46 @@ pub struct PreviewPane<'a>(pub &'a App);
 impl Widget for PreviewPane<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let app = self.0;
-        let title = if app.compare {
+        let view = &app.view;
+        let mut title = if view.compare() {
             "Preview · compare".to_string()
         } else {
-            format!("Preview · {}", app.algorithm)
+            format!("Preview · {}", view.algorithm())
         };
-        let block = pane(&title, app.focus == Focus::Preview);
+        if view.camera() != app.doc.scene().camera {
+            // Looking around is not saved: say how to keep it.
+            title.push_str(" · view moved, C keeps it");
+        }
+        let block = pane(&title, app.focus() == Focus::Preview);
         let inner = block.inner(area);
         block.render(area, buf);
-        if app.compare {
+        if view.compare() {
             for (i, (algorithm, label, image)) in compare_panes(inner).into_iter().enumerate() {
-                let shot = app.compare_shots[i].as_ref();
+                let shot = app.previews.compare[i].as_ref();
                 let text = match shot {
                     Some(s) => format!("{} {} {}", i + 1, algorithm, millis(app, s.millis)),
                     None => format!("{} {} …", i + 1, algorithm),
                 };
                 Paragraph::new(text)
                     .alignment(Alignment::Center)
-                    .style(Style::new().add_modifier(Modifier::BOLD))
+                    .style(theme::HEADING)
                     .render(label, buf);
                 if let Some(s) = shot {
                     Picture {
                         image: &s.image,
-                        mode: app.color,
+                        mode: view.color(),
                     }
                     .render(image, buf);
                 }
             }
-        } else if let Some(shot) = &app.shot {
+        } else if let Some(shot) = &app.previews.shot {
             Picture {
                 image: &shot.image,
-                mode: app.color,
+                mode: view.color(),
             }
             .render(inner, buf);
         } else {
-            Paragraph::new(Line::styled("rendering…", Style::new().fg(Color::DarkGray)))
+            Paragraph::new(Line::styled("rendering…", theme::DIM))
                 .alignment(Alignment::Center)
                 .render(inner, buf);
         }

@@ -3,20 +3,22 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Gauge, Paragraph, Widget};
 
 use super::millis;
-use crate::tui::app::{App, Focus, Mode, Tone};
+use crate::tui::app::{App, Tone};
+use crate::tui::mode::Mode;
+use crate::tui::selection::Focus;
 use crate::tui::text::clean;
+use crate::tui::theme;
 
 /// Two lines at the bottom of the screen.
 pub struct StatusBar<'a>(pub &'a App);
 
 /// The keys worth showing for the current mode and pane.
 pub fn hints(app: &App) -> &'static str {
-    match (&app.mode, app.focus) {
+    match (&app.mode, app.focus()) {
         (Mode::Edit(_), _) => "type a value · Enter accept · Esc cancel · Ctrl-u clear",
         (Mode::Prompt(..), _) => "type a path · Enter accept · Esc cancel",
         (Mode::Export(_), _) => "↑↓ field · ←→ algorithm · Enter export · Esc cancel",
@@ -30,7 +32,7 @@ pub fn hints(app: &App) -> &'static str {
             "↑↓ property · ←→ step (Shift ×10) · Enter type · u undo · Tab pane · ? help · q quit"
         }
         (Mode::Normal, Focus::Preview) => {
-            "←→↑↓ orbit · Shift pan · +/- zoom · r reset · drag/wheel · 1 2 3 algo · c compare · ? help"
+            "←→↑↓ orbit · Shift pan · +/- zoom · r reset · C set camera · 1 2 3 algo · c compare · ? help"
         }
     }
 }
@@ -39,18 +41,16 @@ impl Widget for StatusBar<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let app = self.0;
         let [top, bottom] = Layout::vertical([Constraint::Length(1); 2]).areas(area);
-        let sep = || Span::styled(" │ ", Style::new().fg(Color::DarkGray));
-        let algorithm = if app.compare {
+        let sep = || Span::styled(" │ ", theme::DIM);
+        let compare = app.view.compare();
+        let algorithm = if compare {
             "Compare".to_string()
         } else {
-            app.algorithm.to_string()
+            app.view.algorithm().to_string()
         };
-        let mut spans = vec![Span::styled(
-            format!(" {algorithm}"),
-            Style::new().fg(Color::Cyan).add_modifier(Modifier::BOLD),
-        )];
-        if let Some(shot) = &app.shot
-            && !app.compare
+        let mut spans = vec![Span::styled(format!(" {algorithm}"), theme::ALGORITHM)];
+        if let Some(shot) = &app.previews.shot
+            && !compare
         {
             spans.extend([
                 sep(),
@@ -59,18 +59,18 @@ impl Widget for StatusBar<'_> {
                 Span::raw(format!("{}×{} px", shot.image.width, shot.image.height)),
             ]);
         }
-        if let Some(t) = app.triangles {
+        if let Some(t) = app.previews.triangles {
             spans.extend([sep(), Span::raw(format!("{t} tris"))]);
         }
         spans.push(sep());
-        if app.dirty {
-            spans.push(Span::styled("● modified ", Style::new().fg(Color::Yellow)));
+        if app.doc.is_dirty() {
+            spans.push(Span::styled("● modified ", theme::WARNING));
         }
         spans.push(Span::raw(app.title()));
         if let Some(status) = &app.status {
             let style = match status.tone {
-                Tone::Info => Style::new().fg(Color::Green),
-                Tone::Error => Style::new().fg(Color::Red).add_modifier(Modifier::BOLD),
+                Tone::Info => theme::INFO,
+                Tone::Error => theme::ERROR,
             };
             spans.extend([sep(), Span::styled(clean(&status.text), style)]);
         }
@@ -83,7 +83,7 @@ impl Widget for StatusBar<'_> {
                         .areas(top);
                 Paragraph::new(line).render(text, buf);
                 Gauge::default()
-                    .gauge_style(Style::new().fg(Color::Magenta).bg(Color::Black))
+                    .gauge_style(theme::PROGRESS)
                     .ratio(job.progress.fraction().clamp(0.0, 1.0))
                     .label(format!(
                         "export {:.0}% · {} s · Esc",
@@ -94,10 +94,6 @@ impl Widget for StatusBar<'_> {
             }
             None => Paragraph::new(line).render(top, buf),
         }
-        Paragraph::new(Line::styled(
-            format!(" {}", hints(app)),
-            Style::new().fg(Color::DarkGray),
-        ))
-        .render(bottom, buf);
+        Paragraph::new(Line::styled(format!(" {}", hints(app)), theme::DIM)).render(bottom, buf);
     }
 }

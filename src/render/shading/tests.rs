@@ -1,46 +1,15 @@
-//! The lighting function and the maths under it: `pow` against libm, one lane against eight,
-//! the whole function against a direct transcription of the README's formula, and fragments
-//! batched as spans against the same pixels packed one by one.
+//! The lighting function against a direct transcription of the README's formula, and one lane
+//! against eight: the ray tracer and the Z-buffer must light a point to the same bits.
 
 use std::f32::consts::{PI, TAU};
 
-use glam::{Vec3, Vec4};
+use glam::Vec3;
 use proptest::prelude::*;
-use rastray::render::fragments::{Fragments, Packer};
-use rastray::render::lane_vec::V3;
-use rastray::render::lanes::{F32x8, WIDTH};
-use rastray::render::materials::{MaterialLanes, SPECULAR_FLOOR};
-use rastray::render::pow::pow;
-use rastray::render::shading::Lighting;
-use rastray::scene::{Falloff, Light, Material};
 
-proptest! {
-    #[test]
-    fn pow_matches_libm_over_the_materials_range(x in 0.0f32..=1.0, p in 0.0f32..=10_000.0) {
-        let (got, want) = (pow(x, p), x.powf(p));
-        // The stated accuracy: 1e-5 relative or 1e-7 absolute (results below 2^-64 are floored).
-        prop_assert!((got - want).abs() <= 1e-5 * want + 1e-7, "{x}^{p}: {got} vs {want}");
-    }
-
-    #[test]
-    fn pow_near_one_keeps_tight_highlights(k in 1u32..7, p in 1.0f32..=10_000.0) {
-        // Highlights of large exponents live in R·V just below 1: relative accuracy there.
-        let x = 1.0 - 10f32.powi(-(k as i32));
-        let (got, want) = (pow(x, p), x.powf(p));
-        prop_assert!((got - want).abs() <= 1e-5 * want + 1e-7, "{x}^{p}: {got} vs {want}");
-    }
-}
-
-#[test]
-fn pow_has_exact_anchors() {
-    assert_eq!(pow(1.0f32, 60.0), 1.0, "1^p = 1: the centre of a highlight");
-    assert_eq!(pow(0.5f32, 0.0), 1.0, "x^0 = 1");
-    assert_eq!(pow(0.5f32, 1.0), 0.5);
-    assert!(
-        pow(0.0f32, 8.0) < 1e-19,
-        "0^p is floored near 2^-64, not NaN"
-    );
-}
+use super::Lighting;
+use crate::render::materials::{MaterialLanes, SPECULAR_FLOOR};
+use crate::render::simd::{F32x8, V3, WIDTH};
+use crate::scene::{Falloff, Light, Material};
 
 /// A unit vector from two angles in radians.
 fn direction(theta: f32, phi: f32) -> Vec3 {
@@ -230,27 +199,4 @@ fn a_highlight_below_the_floor_is_dropped_and_one_above_is_kept() {
         1.0,
     );
     assert!(matte.specular_cutoff > 1.0);
-}
-
-#[test]
-fn a_span_and_packed_pixels_interpolate_the_same_bits() {
-    // Pixel k of a run is `start + per_x·k` whether it arrives in a span of eight or is packed
-    // with other leftovers: the image must not depend on how pixels were batched.
-    let at_start = Vec4::new(0.3, -0.7, 0.11, 0.25);
-    let per_x = Vec4::new(1.0e-3, -3.0e-4, 7.0e-5, -1.0e-5);
-    let span = Fragments::span(5, 100, 8, 2, at_start, per_x);
-    let mut packer = Packer::default();
-    for k in 8..16 {
-        packer.push(100 + k as u32, 2, at_start + per_x * k as f32);
-    }
-    let packed = packer.take(5).expect("eight fragments");
-    assert_eq!(span.x, packed.x);
-    assert_eq!(span.count, WIDTH);
-    assert_eq!(span.depth.to_array(), packed.depth.to_array());
-    assert_eq!(span.varying.to_vec3s(), packed.varying.to_vec3s());
-    // A partly filled packer repeats its last fragment and says how many are real.
-    packer.push(7, 1, at_start);
-    let one = packer.take(5).expect("one fragment");
-    assert_eq!((one.count, one.x), (1, [7; WIDTH]));
-    assert!(packer.take(5).is_none(), "take empties the packer");
 }

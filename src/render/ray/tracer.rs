@@ -7,22 +7,19 @@
 //! one. Pairs of rows are traced in parallel; every pixel depends only on its own rays, so the
 //! image is the same for any number of threads.
 
-use std::ops::Add;
-
 use glam::Vec3;
 use rayon::prelude::*;
 
 use super::accel::SceneAccel;
-use super::camera::{NEAR, View};
-use super::frame::Frame;
-use super::lane_vec::V3;
-use super::lanes::{F32x8, WIDTH};
-use super::materials::ObjectMaterials;
-use super::options::RenderOptions;
+use super::half_line::Ray;
 use super::packet::RayPacket;
-use super::progress::{Cancelled, Progress};
-use super::ray::Ray;
-use super::shading::Lighting;
+use crate::render::camera::{NEAR, View};
+use crate::render::materials::ObjectMaterials;
+use crate::render::options::RenderOptions;
+use crate::render::progress::{Cancelled, Progress};
+use crate::render::shading::Lighting;
+use crate::render::simd::{F32x8, V3, WIDTH};
+use crate::render::stats::RayCounts;
 use crate::scene::Light;
 use crate::world::World;
 
@@ -35,65 +32,6 @@ const PACKET_COLUMNS: usize = 4;
 /// … by this many rows.
 const PACKET_ROWS: usize = WIDTH / PACKET_COLUMNS;
 
-/// How many rays of each kind a render cast.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct RayStats {
-    /// Rays from the eye, one per pixel (sample).
-    pub primary: u64,
-    /// Rays toward lights from lit points.
-    pub shadow: u64,
-    /// Mirror rays from reflective surfaces.
-    pub reflection: u64,
-}
-
-impl RayStats {
-    /// All rays cast.
-    pub fn total(&self) -> u64 {
-        self.primary + self.shadow + self.reflection
-    }
-}
-
-impl Add for RayStats {
-    type Output = RayStats;
-
-    fn add(self, o: RayStats) -> RayStats {
-        RayStats {
-            primary: self.primary + o.primary,
-            shadow: self.shadow + o.shadow,
-            reflection: self.reflection + o.reflection,
-        }
-    }
-}
-
-/// Renders `world` through `view` (one ray per pixel centre), building the acceleration
-/// structure first.
-pub fn render(
-    world: &World,
-    view: &View,
-    options: &RenderOptions,
-    progress: &Progress,
-) -> Result<Frame, Cancelled> {
-    let accel = SceneAccel::build(world);
-    render_with_stats(&accel, world, view, options, progress).map(|(frame, _)| frame)
-}
-
-/// As [`render`], with an acceleration structure already built from `world`, also counting
-/// the rays cast.
-pub fn render_with_stats(
-    accel: &SceneAccel,
-    world: &World,
-    view: &View,
-    options: &RenderOptions,
-    progress: &Progress,
-) -> Result<(Frame, RayStats), Cancelled> {
-    let mut stats = RayStats::default();
-    let frame = Frame::drawn(view.width, view.height, |out| {
-        stats = trace_into(accel, world, view, options, progress, out)?;
-        Ok(())
-    })?;
-    Ok((frame, stats))
-}
-
 /// Traces `world` through `view` into `out` (`view.width`×`view.height` pixels), with an
 /// acceleration structure built from `world`; returns the rays cast.
 pub fn trace_into(
@@ -103,7 +41,7 @@ pub fn trace_into(
     options: &RenderOptions,
     progress: &Progress,
     out: &mut [Vec3],
-) -> Result<RayStats, Cancelled> {
+) -> Result<RayCounts, Cancelled> {
     debug_assert_eq!(accel.objects.len(), world.objects.len());
     let tracer = Tracer {
         world,
@@ -122,7 +60,7 @@ pub fn trace_into(
         .enumerate()
         .map(|(pair, rows)| {
             progress.check()?;
-            let mut stats = RayStats::default();
+            let mut stats = RayCounts::default();
             let (top, height) = (pair * PACKET_ROWS, rows.len() / width);
             for left in (0..width).step_by(PACKET_COLUMNS) {
                 // Lane k is pixel (left + k % 4, top + k / 4); lanes past the image's right
@@ -141,7 +79,7 @@ pub fn trace_into(
             progress.advance(height as u64);
             Ok(stats)
         })
-        .try_reduce(RayStats::default, |a, b| Ok(a + b))
+        .try_reduce(RayCounts::default, |a, b| Ok(a + b))
 }
 
 /// What every ray of one render shares.
@@ -196,7 +134,7 @@ impl Tracer<'_> {
         view: &View,
         pixel: [(u32, u32); WIDTH],
         real: u32,
-        stats: &mut RayStats,
+        stats: &mut RayCounts,
     ) -> [Vec3; WIDTH] {
         let x = F32x8::from(pixel.map(|(i, _)| i as f32 + 0.5));
         let y = F32x8::from(pixel.map(|(_, j)| j as f32 + 0.5));
@@ -247,7 +185,7 @@ impl Tracer<'_> {
     }
 
     /// Colour seen along `ray` beyond `t_min`; `depth` counts reflections so far.
-    fn trace(&self, ray: &Ray, t_min: f32, depth: u32, stats: &mut RayStats) -> Vec3 {
+    fn trace(&self, ray: &Ray, t_min: f32, depth: u32, stats: &mut RayCounts) -> Vec3 {
         let Some(hit) = self.accel.intersect(ray, t_min, f32::INFINITY) else {
             return self.world.background;
         };
@@ -262,7 +200,7 @@ impl Tracer<'_> {
 
     /// Whether `light` reaches a point whose secondary rays start at `origin`: always without
     /// shadows, else when its shadow ray is unblocked.
-    fn light_reaches(&self, origin: Vec3, light: &Light, stats: &mut RayStats) -> bool {
+    fn light_reaches(&self, origin: Vec3, light: &Light, stats: &mut RayCounts) -> bool {
         if !self.shadows {
             return true;
         }
@@ -278,7 +216,7 @@ impl Tracer<'_> {
         s: &Surface,
         d: Vec3,
         depth: u32,
-        stats: &mut RayStats,
+        stats: &mut RayCounts,
     ) -> Vec3 {
         let reflection = self.world.objects[object as usize].material.reflection;
         if depth >= self.max_depth || reflection <= 0.0 {

@@ -9,10 +9,9 @@ use glam::Vec3A;
 use wide::{CmpGe, CmpGt, CmpLe, CmpLt, u32x8};
 
 use super::bvh::{Bvh, MAX_TREE_DEPTH, Node};
+use super::half_line::TINY;
 use super::intersect::{PARALLEL_COS, Triangle};
-use super::lane_vec::V3;
-use super::lanes::F32x8;
-use super::ray::TINY;
+use crate::render::simd::{F32x8, V3};
 
 /// Eight rays `origin + t·dir`, t > `t_min`, one per lane.
 #[derive(Debug, Clone, Copy)]

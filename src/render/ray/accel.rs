@@ -7,9 +7,9 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::bvh::Bvh;
+use super::half_line::Ray;
 use super::intersect::segment_meets_sphere;
 use super::packet::{PacketHits, RayPacket};
-use super::ray::Ray;
 use crate::mesh::Sphere;
 use crate::world::World;
 
@@ -77,11 +77,6 @@ impl SceneAccel {
             epsilon,
             build_time: started.elapsed(),
         }
-    }
-
-    /// Total triangles over all objects.
-    pub fn triangle_count(&self) -> usize {
-        self.objects.iter().map(|o| o.bvh.triangles.len()).sum()
     }
 
     /// The nearest hit with t in (t_min, t_max) over all objects.

@@ -2,8 +2,9 @@
 //! and parallel rays. Expected values come from the geometry of each case.
 
 use glam::{Vec3, Vec3A};
-use rastray::render::intersect::{Triangle, ray_box, ray_sphere, segment_meets_sphere};
-use rastray::render::ray::Ray;
+
+use crate::render::ray::half_line::Ray;
+use crate::render::ray::intersect::{Triangle, ray_box, ray_sphere, segment_meets_sphere};
 
 /// The right triangle (0,0,0), (1,0,0), (0,1,0) in the z = 0 plane.
 fn unit_triangle() -> Triangle {

@@ -9,8 +9,8 @@
 use glam::{Vec3, Vec3A, Vec4};
 
 use super::bvh_build;
+use super::half_line::Ray;
 use super::intersect::{Triangle, ray_box};
-use super::ray::Ray;
 use crate::mesh::Mesh;
 
 /// The deepest tree the builder makes; a node at this depth becomes a leaf whatever its size.
@@ -195,6 +195,11 @@ impl Bvh {
     }
 
     /// Whether any triangle is hit with t in (t_min, t_max): the shadow-ray test.
+    ///
+    /// Kept out of line, a function of its own as it always was: inlined into the tracer's
+    /// shadow test, the same machine code ran the default scene 8% slower or faster depending
+    /// only on the address the linker gave it.
+    #[inline(never)]
     pub fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
         let mut t_max = t_max;
         self.traverse(ray, t_min, &mut t_max, |k, t_max| {

@@ -5,13 +5,13 @@
 
 use glam::{Vec3, Vec3A};
 use proptest::prelude::*;
-use rastray::mesh::{Mesh, icosahedron};
-use rastray::render::bvh::{Bvh, MAX_TREE_DEPTH, Node};
-use rastray::render::intersect::Triangle;
-use rastray::render::lane_vec::V3;
-use rastray::render::lanes::{F32x8, WIDTH};
-use rastray::render::packet::{PacketHits, RayPacket};
-use rastray::render::ray::Ray;
+
+use crate::mesh::{Mesh, icosahedron};
+use crate::render::ray::bvh::{Bvh, MAX_TREE_DEPTH, Node};
+use crate::render::ray::half_line::Ray;
+use crate::render::ray::intersect::Triangle;
+use crate::render::ray::packet::{PacketHits, RayPacket};
+use crate::render::simd::{F32x8, V3, WIDTH};
 
 fn mesh_from(triangles: &[[Vec3; 3]]) -> Mesh {
     let positions: Vec<Vec3> = triangles.iter().flatten().copied().collect();

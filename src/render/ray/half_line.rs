@@ -33,10 +33,4 @@ impl Ray {
             inv_dir: safe.recip(),
         }
     }
-
-    /// The point at parameter `t`.
-    #[inline]
-    pub fn at(&self, t: f32) -> Vec3 {
-        Vec3::from(self.origin + self.dir * t)
-    }
 }

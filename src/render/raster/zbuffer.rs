@@ -17,10 +17,10 @@ use std::ops::Range;
 use glam::{DVec4, Vec2, Vec3, Vec4};
 use rayon::prelude::*;
 
-use super::camera::{NEAR, View};
 use super::fragments::{Fragments, Packer};
-use super::lanes::{F32x8, WIDTH, load};
-use super::progress::{Cancelled, Progress};
+use crate::render::camera::{NEAR, View};
+use crate::render::progress::{Cancelled, Progress};
+use crate::render::simd::{F32x8, WIDTH, load};
 use crate::world::World;
 use wide::{CmpGe, u32x8};
 
@@ -261,6 +261,7 @@ fn depth_test(depth: &mut [f32], ids: &mut [u32], z0: f32, dz: f32, id: u32) {
 /// How many times each pixel centre is covered by some triangle, with no depth test: a closed
 /// surface seen from outside covers each pixel it projects onto exactly twice (front and back),
 /// a single flat patch exactly once. Used to check the fill rule.
+#[cfg(test)]
 pub fn coverage_counts(world: &World, view: &View) -> Vec<u32> {
     let (width, height) = (view.width, view.height);
     let normals: Vec<&[Vec3]> = world.objects.iter().map(|o| &o.mesh.normals[..]).collect();

@@ -9,8 +9,7 @@
 
 use glam::{Vec3, Vec4};
 
-use super::lane_vec::V3;
-use super::lanes::{F32x8, WIDTH};
+use crate::render::simd::{F32x8, V3, WIDTH};
 
 /// Up to [`WIDTH`] covered pixels of one row. Lanes past `count` repeat the last pixel.
 #[derive(Debug, Clone, Copy)]
@@ -144,5 +143,36 @@ impl Packer {
             self.object,
             self.values.map(F32x8::from),
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec4;
+
+    use super::{Fragments, Packer};
+    use crate::render::simd::WIDTH;
+
+    #[test]
+    fn a_span_and_packed_pixels_interpolate_the_same_bits() {
+        // Pixel k of a run is `start + per_x·k` whether it arrives in a span of eight or is packed
+        // with other leftovers: the image must not depend on how pixels were batched.
+        let at_start = Vec4::new(0.3, -0.7, 0.11, 0.25);
+        let per_x = Vec4::new(1.0e-3, -3.0e-4, 7.0e-5, -1.0e-5);
+        let span = Fragments::span(5, 100, 8, 2, at_start, per_x);
+        let mut packer = Packer::default();
+        for k in 8..16 {
+            packer.push(100 + k as u32, 2, at_start + per_x * k as f32);
+        }
+        let packed = packer.take(5).expect("eight fragments");
+        assert_eq!(span.x, packed.x);
+        assert_eq!(span.count, WIDTH);
+        assert_eq!(span.depth.to_array(), packed.depth.to_array());
+        assert_eq!(span.varying.to_vec3s(), packed.varying.to_vec3s());
+        // A partly filled packer repeats its last fragment and says how many are real.
+        packer.push(7, 1, at_start);
+        let one = packer.take(5).expect("one fragment");
+        assert_eq!((one.count, one.x), (1, [7; WIDTH]));
+        assert!(packer.take(5).is_none(), "take empties the packer");
     }
 }

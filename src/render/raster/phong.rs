@@ -2,25 +2,16 @@
 
 use glam::Vec3;
 
-use super::camera::View;
-use super::frame::Frame;
-use super::lane_vec::V3;
-use super::lanes::F32x8;
-use super::materials::ObjectMaterials;
-use super::progress::{Cancelled, Progress};
-use super::raster::draw;
-use super::shading::Lighting;
+use super::zbuffer::draw;
+use crate::render::camera::View;
+use crate::render::materials::ObjectMaterials;
+use crate::render::progress::{Cancelled, Progress};
+use crate::render::shading::Lighting;
+use crate::render::simd::{F32x8, V3};
 use crate::world::World;
 
-/// Renders `world` through `view` (one sample per pixel).
-pub fn render(world: &World, view: &View, progress: &Progress) -> Result<Frame, Cancelled> {
-    Frame::drawn(view.width, view.height, |out| {
-        render_into(world, view, progress, out)
-    })
-}
-
 /// Renders `world` through `view` into `out` (`view.width`×`view.height` pixels).
-pub fn render_into(
+pub fn render_phong(
     world: &World,
     view: &View,
     progress: &Progress,
