@@ -183,10 +183,41 @@ fn control_characters_in_names_are_not_drawn() {
 
 /// Draws `image` into a buffer the size of its cells.
 fn cells(image: &PreviewImage, mode: ColorMode) -> Buffer {
+    cells_coarse(image, mode, &None)
+}
+
+/// Draws `image` with the pixels flagged in `coarse` in the 256-colour palette.
+fn cells_coarse(image: &PreviewImage, mode: ColorMode, coarse: &Option<Vec<bool>>) -> Buffer {
     let area = Rect::new(0, 0, image.width as u16, image.height.div_ceil(2) as u16);
     let mut buf = Buffer::empty(area);
-    Picture { image, mode }.render(area, &mut buf);
+    Picture {
+        image,
+        mode,
+        coarse,
+    }
+    .render(area, &mut buf);
     buf
+}
+
+#[test]
+fn a_motion_frame_draws_only_the_flagged_pixels_in_the_palette() {
+    // Two cells: the left one's upper pixel is flagged, the right one is not.
+    let image = PreviewImage {
+        width: 2,
+        height: 2,
+        pixels: vec![[200, 40, 40], [12, 13, 20], [10, 200, 30], [240, 240, 10]],
+    };
+    let coarse = Some(vec![true, false, false, false]);
+    let buf = cells_coarse(&image, ColorMode::Truecolor, &coarse);
+    let left = &buf[(0, 0)];
+    assert_eq!(left.symbol(), "▀");
+    assert_eq!(left.fg, Color::Indexed(nearest_256([200, 40, 40])));
+    assert_eq!(left.bg, Color::Rgb(10, 200, 30));
+    let right = &buf[(1, 0)];
+    assert_eq!(
+        (right.fg, right.bg),
+        (Color::Rgb(12, 13, 20), Color::Rgb(240, 240, 10))
+    );
 }
 
 #[test]

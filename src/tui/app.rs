@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use super::document::Document;
 use super::export_job::ExportJob;
 use super::mode::Mode;
+use super::motion::{CoarseMask, MotionFilter};
 use super::preview::{ColorMode, PreviewImage};
 use super::selection::{Focus, Item, Selection};
 use super::view_state::ViewState;
@@ -33,6 +34,8 @@ pub struct Shot {
     pub image: PreviewImage,
     /// Render time, milliseconds.
     pub millis: f64,
+    /// Pixels drawn coarse in the current frame (see [`crate::tui::motion`]).
+    pub coarse: CoarseMask,
 }
 
 /// The latest frames from the render worker.
@@ -44,6 +47,26 @@ pub struct Previews {
     pub compare: [Option<Shot>; 3],
     /// Triangles in the last world built.
     pub triangles: Option<usize>,
+    /// The last exact frame of each slot: the main preview, then the compare panes.
+    motion: [MotionFilter; 4],
+}
+
+impl Previews {
+    /// Decides, before a frame is drawn, which pixels of each preview are drawn coarse: with
+    /// `cheap` (keys are arriving over a link that is paced), those that changed since the last
+    /// exact frame; otherwise none, and this frame becomes the reference. Returns whether any
+    /// pixel is drawn coarse.
+    pub fn present(&mut self, mode: ColorMode, cheap: bool) -> bool {
+        let shots = std::iter::once(&mut self.shot).chain(self.compare.iter_mut());
+        let mut any = false;
+        for (shot, filter) in shots.zip(&mut self.motion) {
+            if let Some(shot) = shot {
+                shot.coarse = filter.mask(&shot.image, mode, cheap);
+                any |= shot.coarse.as_ref().is_some_and(|m| m.contains(&true));
+            }
+        }
+        any
+    }
 }
 
 /// The whole editor state.
@@ -122,7 +145,13 @@ impl App {
         self.status.as_ref()
     }
 
-    /// The latest frames from the render worker.
+    /// Chooses how the next frame draws the previews: `cheap` while keys arrive over a paced
+    /// link (see [`Previews::present`]). Returns whether the frame is a cheap one.
+    pub fn present_previews(&mut self, cheap: bool) -> bool {
+        self.previews.present(self.view.color(), cheap)
+    }
+
+    /// The latest preview frames.
     pub fn previews(&self) -> &Previews {
         &self.previews
     }

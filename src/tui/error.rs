@@ -16,6 +16,9 @@ pub enum TuiError {
     /// SIGTERM, SIGHUP or SIGINT could not be watched.
     #[error("cannot watch signals")]
     Signals(#[source] io::Error),
+    /// The terminal's input could not be read.
+    #[error("cannot read the terminal")]
+    Input(#[source] io::Error),
     /// Raw mode or the alternate screen could not be set up.
     #[error("cannot set up the terminal (the editor needs one; `rastray render` works without)")]
     TerminalSetup(#[source] io::Error),

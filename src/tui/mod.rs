@@ -14,13 +14,17 @@ pub mod fields;
 pub mod input;
 pub mod keys;
 pub mod mode;
+pub mod motion;
 pub mod orbit;
+pub mod pacer;
 pub mod preview;
 pub mod recovery;
 pub mod selection;
+pub mod term_input;
 pub mod terminal;
 pub mod text;
 pub mod theme;
+pub mod tty_input;
 pub mod update;
 pub mod view;
 pub mod view_state;
@@ -33,10 +37,10 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{RecvTimeoutError, Sender, channel};
+use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::time::{Duration, Instant};
 
-use ratatui::crossterm::event::{self, Event as TermEvent};
+use ratatui::crossterm::event::Event as TermEvent;
 use ratatui::layout::Rect;
 use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
 
@@ -52,6 +56,7 @@ const TICK: Duration = Duration::from_millis(100);
 /// Something the event loop reacts to.
 enum Event {
     Input(TermEvent),
+    Reply(term_input::Reply),
     Render(RenderReply),
 }
 
@@ -69,7 +74,15 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<(), TuiError
         signal_hook::flag::register(signal, signalled.clone()).map_err(TuiError::Signals)?;
     }
     let (tx, rx) = channel();
-    spawn_input(tx.clone());
+    let input_tx = tx.clone();
+    tty_input::spawn(move |input| {
+        let event = match input {
+            term_input::TermInput::Event(e) => Event::Input(e),
+            term_input::TermInput::Reply(r) => Event::Reply(r),
+        };
+        input_tx.send(event).is_ok()
+    })
+    .map_err(TuiError::Input)?;
     let worker = Worker::spawn(move |reply| {
         let _ = tx.send(Event::Render(reply));
     });
@@ -83,33 +96,57 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<(), TuiError
         pending: None,
     };
     let mut redraw = true;
+    let mut pacer = pacer::Pacer::new();
     loop {
         let size = guard.terminal.size()?;
         let areas = view::layout(Rect::new(0, 0, size.width, size.height), &app);
         state.request(&app, areas.map(|a| a.picture));
-        if redraw {
+        let now = Instant::now();
+        // At most one frame in flight: the next waits for the terminal's answer to the last.
+        if (redraw || pacer.needs_exact(now)) && pacer.may_draw(now) {
             let started = Instant::now();
+            let cheap = app.present_previews(pacer.moving(now) && pacer.should_ask());
             guard.draw(|f| f.render_widget(&app, f.area()))?;
+            if pacer.should_ask() {
+                guard.ask(pacer::QUERY)?;
+                pacer.asked(now, cheap);
+            } else {
+                pacer.drew(cheap);
+            }
             state.drawn(started);
+            redraw = false;
         }
         if app.quit {
             break;
         }
-        let first = match rx.recv_timeout(TICK) {
+        let wait = pacer.wake_at().map_or(TICK, |at| {
+            at.saturating_duration_since(Instant::now()).min(TICK)
+        });
+        let first = match rx.recv_timeout(wait) {
             Ok(e) => Some(e),
             Err(RecvTimeoutError::Timeout) => None,
             Err(RecvTimeoutError::Disconnected) => break,
         };
-        redraw = first.is_none() && app.is_exporting();
+        redraw |= first.is_none() && app.is_exporting();
         // Handle everything already queued before drawing again: a held key draws once.
         for event in first
             .into_iter()
             .chain(std::iter::from_fn(|| rx.try_recv().ok()))
         {
+            if let Event::Reply(reply) = &event {
+                if let term_input::Reply::CursorPosition { .. } = reply {
+                    pacer.answered(Instant::now());
+                }
+                continue;
+            }
             redraw = true;
             let picture = areas.map(|a| a.preview).unwrap_or_default();
             let action = match event {
+                Event::Reply(_) => None,
                 Event::Input(ev) => {
+                    if matches!(ev, TermEvent::Key(_) | TermEvent::Mouse(_)) {
+                        pacer.input(Instant::now());
+                    }
                     if let Some(log) = &mut state.latency {
                         log.key_at.get_or_insert(Instant::now());
                     }
@@ -160,20 +197,6 @@ fn load(path: Option<&Path>) -> Result<App, TuiError> {
             std::env::current_dir().map_err(TuiError::WorkingDirectory)?,
         ),
     })
-}
-
-/// Reads terminal events on their own thread, so the loop also wakes for finished frames.
-fn spawn_input(tx: Sender<Event>) {
-    std::thread::Builder::new()
-        .name("rastray-input".into())
-        .spawn(move || {
-            while let Ok(ev) = event::read() {
-                if tx.send(Event::Input(ev)).is_err() {
-                    break;
-                }
-            }
-        })
-        .expect("the input thread can be started");
 }
 
 /// The render jobs the app needs for a picture area of `picture`.

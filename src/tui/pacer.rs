@@ -214,7 +214,11 @@ mod tests {
         p.asked(t + ms(20), false);
         assert!(!p.may_draw(t + ms(20) + LATER_ANSWER - ms(1)));
         assert!(p.may_draw(t + ms(20) + LATER_ANSWER));
-        assert_eq!(p.answering(), Answering::Yes, "one lost answer is not a deaf terminal");
+        assert_eq!(
+            p.answering(),
+            Answering::Yes,
+            "one lost answer is not a deaf terminal"
+        );
     }
 
     #[test]

@@ -91,11 +91,23 @@ pub fn halves_match(a: [u8; 3], b: [u8; 3]) -> bool {
 /// both present → '▀' upper on lower; only the upper one (odd image height) → '▀' on the default
 /// background; none → an empty cell.
 pub fn half_block(upper: Option<[u8; 3]>, lower: Option<[u8; 3]>, mode: ColorMode) -> HalfBlock {
+    half_block_each(upper.map(|c| (c, mode)), lower.map(|c| (c, mode)))
+}
+
+/// As [`half_block`], with a colour mode for each pixel (a motion frame draws some pixels in the
+/// 256-colour palette, see [`super::motion`]).
+pub fn half_block_each(
+    upper: Option<([u8; 3], ColorMode)>,
+    lower: Option<([u8; 3], ColorMode)>,
+) -> HalfBlock {
     let lower = match (upper, lower) {
-        (Some(u), Some(l)) if halves_match(u, l) => Some(u),
+        (Some(u), Some(l)) if halves_match(u.0, l.0) => Some(u),
         _ => lower,
     };
-    let (upper, lower) = (upper.map(|c| mode.color(c)), lower.map(|c| mode.color(c)));
+    let (upper, lower) = (
+        upper.map(|(c, mode)| mode.color(c)),
+        lower.map(|(c, mode)| mode.color(c)),
+    );
     match (upper, lower) {
         (Some(u), Some(l)) if u == l => HalfBlock {
             symbol: " ",

@@ -250,14 +250,11 @@ fn ss3_key(c: u8) -> Option<KeyCode> {
 /// `ESC P … ST` (DCS) or `ESC _ … ST` (APC), ended by `ESC \` or BEL.
 fn parse_string(b: &[u8], flush: bool) -> Parsed {
     let body = &b[2..];
-    let end = body
-        .iter()
-        .enumerate()
-        .find_map(|(i, &c)| match c {
-            0x07 => Some((i, 1)),
-            0x1b if body.get(i + 1) == Some(&b'\\') => Some((i, 2)),
-            _ => None,
-        });
+    let end = body.iter().enumerate().find_map(|(i, &c)| match c {
+        0x07 => Some((i, 1)),
+        0x1b if body.get(i + 1) == Some(&b'\\') => Some((i, 2)),
+        _ => None,
+    });
     let Some((at, terminator)) = end else {
         return if flush {
             Parsed::Done(b.len(), None)
@@ -317,12 +314,10 @@ fn parse_csi(b: &[u8], flush: bool) -> Parsed {
             mouse(n(0), n(1), n(2), final_byte == b'm').map(TermInput::Event)
         }
         (Some(b'?'), b'c') => Some(TermInput::Reply(Reply::DeviceAttributes(numbers))),
-        (None, b'R') if numbers.len() == 2 => {
-            Some(TermInput::Reply(Reply::CursorPosition {
-                row: n(0),
-                column: n(1),
-            }))
-        }
+        (None, b'R') if numbers.len() == 2 => Some(TermInput::Reply(Reply::CursorPosition {
+            row: n(0),
+            column: n(1),
+        })),
         (None, b't') if n(0) == 6 => Some(TermInput::Reply(Reply::CellSize {
             height: n(1),
             width: n(2),
@@ -334,8 +329,9 @@ fn parse_csi(b: &[u8], flush: bool) -> Parsed {
         (None, b'I') => Some(TermInput::Event(Event::FocusGained)),
         (None, b'O') => Some(TermInput::Event(Event::FocusLost)),
         (None, b'~') if n(0) == 200 => Some(TermInput::Event(Event::Paste(String::new()))),
-        (None, _) => csi_key(final_byte, &numbers)
-            .and_then(|(code, modifiers)| key(code, modifiers)),
+        (None, _) => {
+            csi_key(final_byte, &numbers).and_then(|(code, modifiers)| key(code, modifiers))
+        }
         _ => None,
     };
     Parsed::Done(len, input)
@@ -462,7 +458,10 @@ mod tests {
                 (KeyCode::Char('c'), KeyModifiers::CONTROL),
             ]
         );
-        assert_eq!(keys("é→".as_bytes()), vec![(KeyCode::Char('é'), NONE), (KeyCode::Char('→'), NONE)]);
+        assert_eq!(
+            keys("é→".as_bytes()),
+            vec![(KeyCode::Char('é'), NONE), (KeyCode::Char('→'), NONE)]
+        );
     }
 
     #[test]
@@ -486,14 +485,20 @@ mod tests {
         let mut decoder = Decoder::new();
         let mut out = Vec::new();
         decoder.feed(b"\x1b", &mut out);
-        assert!(out.is_empty() && decoder.has_pending(), "ESC may start a sequence");
+        assert!(
+            out.is_empty() && decoder.has_pending(),
+            "ESC may start a sequence"
+        );
         decoder.feed(b"[B", &mut out);
         assert_eq!(out.len(), 1, "{out:?}");
         assert!(!decoder.has_pending());
         decoder.feed(b"\x1b", &mut out);
         decoder.flush(&mut out);
         assert_eq!(out[1], key(KeyCode::Esc, NONE).unwrap());
-        assert_eq!(keys(b"\x1bx"), vec![(KeyCode::Char('x'), KeyModifiers::ALT)]);
+        assert_eq!(
+            keys(b"\x1bx"),
+            vec![(KeyCode::Char('x'), KeyModifiers::ALT)]
+        );
     }
 
     #[test]
@@ -514,9 +519,15 @@ mod tests {
         assert_eq!(
             decode(b"\x1b[12;40R\x1b[?62;4;22c\x1b[6;20;10t\x1b_Gi=31;OK\x1b\\\x1bP1+r5463\x1b\\"),
             vec![
-                TermInput::Reply(Reply::CursorPosition { row: 12, column: 40 }),
+                TermInput::Reply(Reply::CursorPosition {
+                    row: 12,
+                    column: 40
+                }),
                 TermInput::Reply(Reply::DeviceAttributes(vec![62, 4, 22])),
-                TermInput::Reply(Reply::CellSize { width: 10, height: 20 }),
+                TermInput::Reply(Reply::CellSize {
+                    width: 10,
+                    height: 20
+                }),
                 TermInput::Reply(Reply::Kitty("i=31;OK".into())),
                 TermInput::Reply(Reply::Dcs("1+r5463".into())),
             ]
@@ -527,13 +538,14 @@ mod tests {
 
     #[test]
     fn sgr_mouse_press_drag_release_and_wheel() {
-        let kinds: Vec<(MouseEventKind, u16, u16)> = decode(b"\x1b[<0;10;5M\x1b[<32;11;5M\x1b[<0;11;5m\x1b[<64;3;3M")
-            .into_iter()
-            .map(|i| match i {
-                TermInput::Event(Event::Mouse(m)) => (m.kind, m.column, m.row),
-                other => panic!("not a mouse event: {other:?}"),
-            })
-            .collect();
+        let kinds: Vec<(MouseEventKind, u16, u16)> =
+            decode(b"\x1b[<0;10;5M\x1b[<32;11;5M\x1b[<0;11;5m\x1b[<64;3;3M")
+                .into_iter()
+                .map(|i| match i {
+                    TermInput::Event(Event::Mouse(m)) => (m.kind, m.column, m.row),
+                    other => panic!("not a mouse event: {other:?}"),
+                })
+                .collect();
         assert_eq!(
             kinds,
             vec![

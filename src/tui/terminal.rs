@@ -38,6 +38,13 @@ impl TerminalGuard {
         Ok(TerminalGuard { terminal })
     }
 
+    /// Writes a query to the terminal (its answer comes back as input) and flushes it.
+    pub fn ask(&mut self, query: &[u8]) -> io::Result<()> {
+        let out = self.terminal.backend_mut();
+        out.write_all(query)?;
+        out.flush()
+    }
+
     /// Draws one frame inside a synchronized update.
     pub fn draw(&mut self, render: impl FnOnce(&mut Frame)) -> io::Result<()> {
         execute!(self.terminal.backend_mut(), BeginSynchronizedUpdate)?;

@@ -218,7 +218,11 @@ fn rendered(app: &mut App, reply: RenderReply) {
             ..
         } => {
             app.previews.triangles = Some(triangles);
-            let shot = Some(Shot { image, millis });
+            let shot = Some(Shot {
+                image,
+                millis,
+                coarse: None,
+            });
             match slot {
                 Slot::Main => app.previews.shot = shot,
                 Slot::Compare(i) => {

@@ -7,7 +7,8 @@ use ratatui::widgets::{Paragraph, Widget};
 
 use super::{compare_panes, millis, pane};
 use crate::tui::app::App;
-use crate::tui::preview::{ColorMode, PreviewImage, half_block};
+use crate::tui::motion::CoarseMask;
+use crate::tui::preview::{ColorMode, PreviewImage, half_block_each};
 use crate::tui::selection::Focus;
 use crate::tui::theme;
 
@@ -15,6 +16,8 @@ use crate::tui::theme;
 pub struct Picture<'a> {
     pub image: &'a PreviewImage,
     pub mode: ColorMode,
+    /// Pixels drawn in the 256-colour palette while the camera moves (see `tui::motion`).
+    pub coarse: &'a CoarseMask,
 }
 
 impl Widget for Picture<'_> {
@@ -22,11 +25,20 @@ impl Widget for Picture<'_> {
         for row in 0..area.height {
             for col in 0..area.width {
                 let (x, y) = (col as u32, 2 * row as u32);
-                let cell = half_block(
-                    self.image.pixel(x, y),
-                    self.image.pixel(x, y + 1),
-                    self.mode,
-                );
+                let pixel = |x: u32, y: u32| {
+                    let rgb = self.image.pixel(x, y)?;
+                    let index = (y * self.image.width + x) as usize;
+                    let coarse = self.coarse.as_ref().is_some_and(|m| m[index]);
+                    Some((
+                        rgb,
+                        if coarse {
+                            ColorMode::Ansi256
+                        } else {
+                            self.mode
+                        },
+                    ))
+                };
+                let cell = half_block_each(pixel(x, y), pixel(x, y + 1));
                 if let Some(c) = buf.cell_mut((area.x + col, area.y + row)) {
                     c.set_symbol(cell.symbol).set_fg(cell.fg).set_bg(cell.bg);
                 }
@@ -69,6 +81,7 @@ impl Widget for PreviewPane<'_> {
                     Picture {
                         image: &s.image,
                         mode: view.color(),
+                        coarse: &s.coarse,
                     }
                     .render(image, buf);
                 }
@@ -77,6 +90,7 @@ impl Widget for PreviewPane<'_> {
             Picture {
                 image: &shot.image,
                 mode: view.color(),
+                coarse: &shot.coarse,
             }
             .render(inner, buf);
         } else {
