@@ -7,6 +7,7 @@
 
 pub mod action;
 pub mod app;
+pub mod compact_backend;
 pub mod document;
 pub mod error;
 pub mod export_job;

@@ -4,9 +4,9 @@
 
 use std::io::{self, Stdout, Write};
 
+use super::compact_backend::CompactBackend;
 use ratatui::Frame;
 use ratatui::Terminal;
-use ratatui::backend::CrosstermBackend;
 use ratatui::crossterm::cursor::{Hide, Show};
 use ratatui::crossterm::event::{DisableMouseCapture, EnableMouseCapture};
 use ratatui::crossterm::execute;
@@ -17,7 +17,7 @@ use ratatui::crossterm::terminal::{
 
 /// Owns the terminal while the editor runs.
 pub struct TerminalGuard {
-    pub terminal: Terminal<CrosstermBackend<Stdout>>,
+    pub terminal: Terminal<CompactBackend<Stdout>>,
 }
 
 impl TerminalGuard {
@@ -34,7 +34,7 @@ impl TerminalGuard {
             restore();
             return Err(e);
         }
-        let terminal = Terminal::new(CrosstermBackend::new(out)).inspect_err(|_| restore())?;
+        let terminal = Terminal::new(CompactBackend::new(out)).inspect_err(|_| restore())?;
         Ok(TerminalGuard { terminal })
     }
 
