@@ -3,7 +3,8 @@
 //! a "terminal" at a fixed byte rate. The terminal answers cursor-position queries when they
 //! reach it, after everything written before them, as a real terminal does.
 //!
-//! Shared by the slow-link test and the `slow_link` benchmark.
+//! Shared by the slow-link test and the `slow_link` benchmark; each uses part of it.
+#![allow(dead_code)]
 
 use std::collections::VecDeque;
 use std::os::fd::OwnedFd;
