@@ -5,7 +5,6 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use rastray::World;
 use rastray::export::save_png;
 use rastray::render::{Algorithm, Progress, RenderOptions, Size, render};
 
@@ -47,7 +46,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         max_depth: args.max_depth,
     };
     options.check()?;
-    let world = World::build(&scene, &base)?;
+    let world = super::build_world(&scene, &base)?.world;
     if world.lights.is_empty() {
         eprintln!("warning: the scene has no lights; only ambient light will show");
     }

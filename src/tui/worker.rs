@@ -12,7 +12,7 @@ use crate::World;
 use crate::render::accel::SceneAccel;
 use crate::render::{Algorithm, Progress, RenderError, RenderOptions, render_prepared};
 use crate::scene::{Camera, Scene};
-use crate::world::ObjCache;
+use crate::world::MeshFileCache;
 
 /// Where a rendered image goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -123,7 +123,7 @@ impl Worker {
 
 /// The thread's loop: take the newest request, build the world if needed, render each job.
 fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
-    let mut cache = ObjCache::default();
+    let mut cache = MeshFileCache::default();
     let mut world: Option<(u64, Arc<World>)> = None;
     // The ray tracer's BVH of the current world, kept while only the camera moves.
     let mut accel: Option<(u64, SceneAccel)> = None;
