@@ -147,7 +147,7 @@ impl AddKind {
             AddKind::Box => "box",
             AddKind::Prism => "prism",
             AddKind::Light => "point light",
-            AddKind::Mesh => "OBJ mesh…",
+            AddKind::Mesh => "mesh (OBJ, glTF)…",
         }
     }
 }
