@@ -239,3 +239,84 @@ fn info_lists_each_primitive_with_its_triangles_and_colour() {
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(stderr.matches("warning: ").count(), 3, "{stderr}");
 }
+
+mod corrupted {
+    use proptest::prelude::*;
+
+    use super::data;
+
+    /// `bytes` with `flips` bytes replaced and cut to `keep` of its length (in [0, 1]).
+    fn corrupt(mut bytes: Vec<u8>, flips: &[(usize, u8)], keep: f64) -> Vec<u8> {
+        let len = bytes.len();
+        for &(at, value) in flips {
+            bytes[at % len] = value;
+        }
+        bytes.truncate((len as f64 * keep) as usize);
+        bytes
+    }
+
+    /// JSON pointers of every number in `value`.
+    fn numbers(value: &serde_json::Value, at: String, out: &mut Vec<String>) {
+        match value {
+            serde_json::Value::Number(_) => out.push(at),
+            serde_json::Value::Array(items) => {
+                for (i, v) in items.iter().enumerate() {
+                    numbers(v, format!("{at}/{i}"), out);
+                }
+            }
+            serde_json::Value::Object(map) => {
+                for (k, v) in map {
+                    numbers(v, format!("{at}/{k}"), out);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// Counts, offsets, strides, indices and types set to edge values: still no panic.
+        #[test]
+        fn models_with_wrong_numbers_never_panic(
+            file in prop::sample::select(vec!["scene.gltf", "box.gltf"]),
+            edits in prop::collection::vec(
+                (any::<usize>(), prop::sample::select(vec![
+                    0u64, 1, 2, 3, 4, 7, 12, 99, 255, 5121, 5123, 5125, 5126,
+                    65_535, 4_294_967_295, 1 << 40,
+                ])),
+                1..4,
+            ),
+        ) {
+            let dir = tempfile::tempdir().expect("tempdir");
+            let mut doc: serde_json::Value =
+                serde_json::from_slice(&std::fs::read(data(file)).expect("model")).expect("JSON");
+            let mut leaves = Vec::new();
+            numbers(&doc, String::new(), &mut leaves);
+            for (pick, value) in edits {
+                let at = &leaves[pick % leaves.len()];
+                *doc.pointer_mut(at).expect("leaf") = serde_json::json!(value);
+            }
+            let path = dir.path().join(file);
+            std::fs::write(&path, doc.to_string()).expect("write");
+            std::fs::copy(data("box data.bin"), dir.path().join("box data.bin")).expect("copy");
+            let _ = rastray::mesh::gltf::load_gltf(&path);
+        }
+
+        /// Whatever bytes a damaged model holds, loading it returns a model or an error: it
+        /// never panics.
+        #[test]
+        fn damaged_models_never_panic(
+            file in prop::sample::select(vec!["box.glb", "scene.gltf", "box.gltf"]),
+            flips in prop::collection::vec((any::<usize>(), any::<u8>()), 0..6),
+            keep in prop_oneof![Just(1.0), 0.0..1.0f64],
+        ) {
+            let dir = tempfile::tempdir().expect("tempdir");
+            let bytes = corrupt(std::fs::read(data(file)).expect("model"), &flips, keep);
+            let path = dir.path().join(file);
+            std::fs::write(&path, bytes).expect("write");
+            std::fs::copy(data("box data.bin"), dir.path().join("box data.bin")).expect("copy");
+            let _ = rastray::mesh::gltf::load_gltf(&path);
+        }
+    }
+}
