@@ -72,3 +72,8 @@ fn default_scene_agrees_with_phong() {
 fn teapot_obj_scene_agrees_with_phong() {
     check("scenes/teapot.toml");
 }
+
+#[test]
+fn suzanne_gltf_scene_agrees_with_phong() {
+    check("scenes/suzanne.toml");
+}

@@ -10,9 +10,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
-use rastray::Scene;
 use rastray::render::Size;
 use rastray::tui::ColorMode;
+use rastray::world::{MeshFileCache, WorldReport};
+use rastray::{Scene, World};
 
 /// Build small 3D scenes in the terminal and render them with a Z-buffer (Gouraud or Phong) or a
 /// Whitted ray tracer.
@@ -87,6 +88,16 @@ pub fn load_scene(path: Option<&Path>) -> anyhow::Result<(Scene, PathBuf)> {
             std::env::current_dir().context("no working directory")?,
         )),
     }
+}
+
+/// Builds the world of `scene` (model paths relative to `base`), printing on stderr what its
+/// model files held that rastray skipped, one `warning:` line each.
+pub fn build_world(scene: &Scene, base: &Path) -> anyhow::Result<WorldReport> {
+    let report = World::build_report(scene, base, &mut MeshFileCache::default())?;
+    for warning in &report.warnings {
+        eprintln!("warning: {warning}");
+    }
+    Ok(report)
 }
 
 /// Parses WIDTHxHEIGHT for clap.

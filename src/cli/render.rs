@@ -6,7 +6,6 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use rastray::World;
 use rastray::export::render_to_png;
 use rastray::render::{Algorithm, Progress, RenderOptions, Size};
 
@@ -48,7 +47,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         ..RenderOptions::new(args.algorithm.0, args.size.width, args.size.height)
     };
     options.check()?;
-    let world = Arc::new(World::build(&scene, &base)?);
+    let world = Arc::new(super::build_world(&scene, &base)?.world);
     if world.lights.is_empty() {
         eprintln!("warning: the scene has no lights; only ambient light will show");
     }

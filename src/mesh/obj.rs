@@ -5,16 +5,10 @@ use std::path::Path;
 
 use glam::Vec3;
 
-/// A model as read from an OBJ file, before normals and placement.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ObjModel {
-    /// Welded vertex positions in the file's units.
-    pub positions: Vec<Vec3>,
-    /// Position indices of each triangle.
-    pub triangles: Vec<[u32; 3]>,
-    /// The file's unit normal for each triangle corner, when every face had normals.
-    pub corner_normals: Option<Vec<[Vec3; 3]>>,
-}
+use super::geometry::ModelGeometry;
+
+/// An OBJ file's geometry: every group of the file merged into one face list.
+pub type ObjModel = ModelGeometry;
 
 /// Reads the OBJ file at `path`. Errors are one-line messages (the caller names the file).
 pub fn load_obj(path: &Path) -> Result<ObjModel, String> {
@@ -90,14 +84,4 @@ pub fn load_obj(path: &Path) -> Result<ObjModel, String> {
         triangles,
         corner_normals,
     })
-}
-
-impl ObjModel {
-    /// Axis-aligned bounds (min, max) of the positions.
-    pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.positions.iter().fold(
-            (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
-            |(lo, hi), &p| (lo.min(p), hi.max(p)),
-        )
-    }
 }

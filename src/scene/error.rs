@@ -38,4 +38,11 @@ pub enum SceneError {
         obj: PathBuf,
         message: String,
     },
+    /// A glTF model referenced by the scene could not be loaded.
+    #[error("{path}: cannot load the glTF model of object[{index}]: {error}")]
+    Gltf {
+        index: usize,
+        path: PathBuf,
+        error: crate::mesh::gltf::GltfError,
+    },
 }

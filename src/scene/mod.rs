@@ -6,6 +6,7 @@ mod material;
 mod model;
 mod object;
 mod validate;
+mod warning;
 
 pub use error::SceneError;
 pub use file::{DEFAULT_SCENE_TOML, default_scene, from_toml_str, load, save, to_toml_string};
@@ -13,3 +14,4 @@ pub use material::Material;
 pub use model::{Camera, Falloff, Light, Scene};
 pub use object::{Object, Shape, ShapeKind};
 pub use validate::{FieldPath, Invalid, MAX_DEPTH, validate};
+pub use warning::SceneWarning;

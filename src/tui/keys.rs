@@ -211,7 +211,7 @@ pub const KEYS: &[Row] = &[
     Row {
         context: Anywhere,
         bindings: &[act(&[ch('a')], Action::AddMenu)],
-        what: "add an icosahedron, box, prism, point light or OBJ mesh",
+        what: "add an icosahedron, box, prism, point light or mesh (OBJ, glTF)",
     },
     Row {
         context: Anywhere,

@@ -30,7 +30,7 @@ pub enum PromptPurpose {
     SaveAs,
     /// Open another scene file.
     Open,
-    /// Add an OBJ mesh.
+    /// Add a mesh from an OBJ or glTF file.
     ObjPath,
 }
 
@@ -94,7 +94,7 @@ impl AddKind {
             AddKind::Box => "box",
             AddKind::Prism => "prism",
             AddKind::Light => "point light",
-            AddKind::Mesh => "OBJ mesh…",
+            AddKind::Mesh => "mesh (OBJ, glTF)…",
         }
     }
 }

@@ -10,7 +10,7 @@ use super::preview::PreviewImage;
 use crate::World;
 use crate::render::{Algorithm, Frame, Progress, RenderError, RenderOptions, Renderer};
 use crate::scene::{Camera, Scene};
-use crate::world::ObjCache;
+use crate::world::MeshFileCache;
 
 /// Where a rendered image goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -121,7 +121,7 @@ impl Worker {
 
 /// The thread's loop: take the newest request, build the world if needed, render each job.
 fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
-    let mut cache = ObjCache::default();
+    let mut cache = MeshFileCache::default();
     let mut world: Option<(u64, Arc<World>)> = None;
     // Keeps the ray tracer's BVH of the current world while only the camera moves.
     let mut renderer: Option<Renderer> = None;
