@@ -5,6 +5,7 @@
 
 pub mod action;
 pub mod app;
+pub mod autosave;
 pub mod export_job;
 pub mod fields;
 pub mod input;
@@ -12,6 +13,7 @@ pub mod keys;
 pub mod orbit;
 pub mod preview;
 pub mod recovery;
+pub mod signals;
 pub mod terminal;
 pub mod text;
 pub mod update;
@@ -19,22 +21,23 @@ pub mod view;
 pub mod worker;
 
 pub use preview::ColorMode;
+pub use signals::Exit;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, Sender, channel};
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use ratatui::crossterm::event::{self, Event as TermEvent};
 use ratatui::layout::Rect;
-use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
 
 use crate::scene::Scene;
 use action::Action;
 use app::App;
+use autosave::Autosave;
+use signals::Signals;
 use terminal::TerminalGuard;
 use worker::{Job, RenderReply, Slot, Wanted, Worker};
 
@@ -48,19 +51,16 @@ enum Event {
 }
 
 /// Runs the editor on the scene at `scene_path` (the built-in scene when `None`) until the user
-/// quits or the process receives SIGTERM, SIGHUP or SIGINT; unsaved edits then go to the
-/// recovery file.
-pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> {
+/// quits or the process receives SIGTERM, SIGHUP or SIGINT. Unsaved edits are kept in the
+/// recovery file meanwhile, and written there at once when a signal or an error ends the editor.
+pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<Exit> {
     let mut app = load(scene_path.as_deref())?;
     app.color = color;
     if let Some(notice) = recovery::notice(scene_path.as_deref()) {
         app.info(notice);
     }
-    let signalled = Arc::new(AtomicBool::new(false));
-    // Raw mode turns Ctrl-C into a key, so SIGINT only comes from `kill`: treat it like SIGTERM.
-    for signal in [SIGTERM, SIGHUP, SIGINT] {
-        signal_hook::flag::register(signal, signalled.clone()).context("cannot watch signals")?;
-    }
+    let signals = Signals::watch().context("cannot watch signals")?;
+    let mut autosave = Autosave::start().context("cannot start autosave")?;
     let (tx, rx) = channel();
     spawn_input(tx.clone());
     let worker = Worker::spawn(move |reply| {
@@ -78,22 +78,27 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
         pending: None,
     };
     let mut redraw = true;
-    loop {
-        let size = guard.terminal.size()?;
+    let ended = loop {
+        let size = match guard.terminal.size() {
+            Ok(size) => size,
+            Err(e) => break Err(e.into()),
+        };
         let areas = view::layout(Rect::new(0, 0, size.width, size.height), &app);
         state.request(&app, areas.map(|a| a.picture));
         if redraw {
             let started = Instant::now();
-            guard.draw(|f| f.render_widget(&app, f.area()))?;
+            if let Err(e) = guard.draw(|f| f.render_widget(&app, f.area())) {
+                break Err(e.into());
+            }
             state.drawn(started);
         }
         if app.quit {
-            break;
+            break Ok(Exit::Quit);
         }
         let first = match rx.recv_timeout(TICK) {
             Ok(e) => Some(e),
             Err(RecvTimeoutError::Timeout) => None,
-            Err(RecvTimeoutError::Disconnected) => break,
+            Err(RecvTimeoutError::Disconnected) => break Err(anyhow::anyhow!("events stopped")),
         };
         redraw = first.is_none() && app.export.is_some();
         // Handle everything already queued before drawing again: a held key draws once.
@@ -122,16 +127,24 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
             }
         }
         update::apply(&mut app, Action::Tick);
-        if signalled.load(Ordering::Relaxed) {
-            drop(guard);
-            if app.dirty {
-                let path = recovery::write(&app.scene, app.path.as_deref())?;
-                eprintln!("rastray: unsaved edits written to {}", path.display());
-            }
-            return Ok(());
+        if let Some(problem) = autosave.note(&app) {
+            app.error(problem);
         }
-    }
-    Ok(())
+        if let Some(signal) = signals.received() {
+            break Ok(Exit::Signal(signal));
+        }
+    };
+    // Edits reach the disk before the terminal is touched: it may be gone.
+    let recovered = match ended {
+        Ok(Exit::Quit) => autosave.quit().map(|()| None),
+        _ => autosave.flush(&app).transpose(),
+    };
+    drop(guard);
+    recovery::report(&recovered);
+    // A lost terminal fails a draw just before its SIGHUP arrives: the signal tells the story.
+    signals
+        .received()
+        .map_or(ended, |signal| Ok(Exit::Signal(signal)))
 }
 
 /// The app on the scene at `path`, or on the built-in scene.
