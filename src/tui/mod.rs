@@ -81,14 +81,14 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<Exit
     let ended = loop {
         let size = match guard.terminal.size() {
             Ok(size) => size,
-            Err(e) => break Err(e.into()),
+            Err(e) => break Err(anyhow::Error::new(e).context("cannot read the terminal's size")),
         };
         let areas = view::layout(Rect::new(0, 0, size.width, size.height), &app);
         state.request(&app, areas.map(|a| a.picture));
         if redraw {
             let started = Instant::now();
             if let Err(e) = guard.draw(|f| f.render_widget(&app, f.area())) {
-                break Err(e.into());
+                break Err(anyhow::Error::new(e).context("cannot draw on the terminal"));
             }
             state.drawn(started);
         }
@@ -98,7 +98,9 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<Exit
         let first = match rx.recv_timeout(TICK) {
             Ok(e) => Some(e),
             Err(RecvTimeoutError::Timeout) => None,
-            Err(RecvTimeoutError::Disconnected) => break Err(anyhow::anyhow!("events stopped")),
+            Err(RecvTimeoutError::Disconnected) => {
+                break Err(anyhow::anyhow!("the editor's events stopped"));
+            }
         };
         redraw = first.is_none() && app.export.is_some();
         // Handle everything already queued before drawing again: a held key draws once.
