@@ -7,6 +7,7 @@ mod info;
 mod render;
 
 use std::path::{Path, PathBuf};
+use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
@@ -61,15 +62,17 @@ pub enum Command {
     Bench(bench::BenchArgs),
 }
 
-/// Runs the parsed command.
-pub fn run(cli: Cli) -> anyhow::Result<()> {
+/// Runs the parsed command; returns the process exit status (the editor's is 128 + the signal's
+/// number when a signal ended it).
+pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
-        Some(Command::Render(args)) => render::run(&args),
-        Some(Command::Info { scene }) => info::run(&scene),
-        Some(Command::Bench(args)) => bench::run_bench(&args),
+        Some(Command::Render(args)) => render::run(&args).map(|()| ExitCode::SUCCESS),
+        Some(Command::Info { scene }) => info::run(&scene).map(|()| ExitCode::SUCCESS),
+        Some(Command::Bench(args)) => bench::run_bench(&args).map(|()| ExitCode::SUCCESS),
         None => {
             let color = cli.color.map_or_else(ColorMode::detect, ColorMode::from);
-            Ok(rastray::tui::run(cli.scene, color)?)
+            let exit = rastray::tui::run(cli.scene, color)?;
+            Ok(ExitCode::from(exit.code()))
         }
     }
 }

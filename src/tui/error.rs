@@ -16,6 +16,12 @@ pub enum TuiError {
     /// SIGTERM, SIGHUP or SIGINT could not be watched.
     #[error("cannot watch signals")]
     Signals(#[source] io::Error),
+    /// The recovery file's writer could not be started.
+    #[error("cannot start autosave")]
+    Autosave(#[source] io::Error),
+    /// Every source of events (input, renders) ended.
+    #[error("the editor's events stopped")]
+    EventsStopped,
     /// The terminal's input could not be read.
     #[error("cannot read the terminal")]
     Input(#[source] io::Error),

@@ -7,6 +7,7 @@
 
 pub mod action;
 pub mod app;
+pub mod autosave;
 pub mod compact_backend;
 pub mod document;
 pub mod error;
@@ -21,6 +22,7 @@ pub mod pacer;
 pub mod preview;
 pub mod recovery;
 pub mod selection;
+pub mod signals;
 pub mod term_input;
 pub mod terminal;
 pub mod text;
@@ -33,21 +35,22 @@ pub mod worker;
 
 pub use error::TuiError;
 pub use preview::ColorMode;
+pub use signals::Exit;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::time::{Duration, Instant};
 
 use ratatui::crossterm::event::Event as TermEvent;
 use ratatui::layout::Rect;
-use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
 
 use crate::scene::Scene;
 use action::Action;
 use app::App;
+use autosave::Autosave;
+use signals::Signals;
 use terminal::TerminalGuard;
 use worker::{Job, RenderReply, Slot, Wanted, Worker};
 
@@ -62,18 +65,15 @@ enum Event {
 }
 
 /// Runs the editor on the scene at `scene_path` (the built-in scene when `None`) until the user
-/// quits or the process receives SIGTERM, SIGHUP or SIGINT; unsaved edits then go to the
-/// recovery file.
-pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<(), TuiError> {
+/// quits or the process receives SIGTERM, SIGHUP or SIGINT. Unsaved edits are kept in the
+/// recovery file meanwhile, and written there at once when a signal or an error ends the editor.
+pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<Exit, TuiError> {
     let mut app = load(scene_path.as_deref())?.with_color(color);
     if let Some(notice) = recovery::notice(scene_path.as_deref()) {
         app.info(notice);
     }
-    let signalled = Arc::new(AtomicBool::new(false));
-    // Raw mode turns Ctrl-C into a key, so SIGINT only comes from `kill`: treat it like SIGTERM.
-    for signal in [SIGTERM, SIGHUP, SIGINT] {
-        signal_hook::flag::register(signal, signalled.clone()).map_err(TuiError::Signals)?;
-    }
+    let signals = Signals::watch().map_err(TuiError::Signals)?;
+    let mut autosave = Autosave::start().map_err(TuiError::Autosave)?;
     let (tx, rx) = channel();
     let input_tx = tx.clone();
     tty_input::spawn(move |input| {
@@ -98,8 +98,11 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<(), TuiError
     };
     let mut redraw = true;
     let mut pacer = pacer::Pacer::new();
-    loop {
-        let size = guard.terminal.size()?;
+    let ended = loop {
+        let size = match guard.terminal.size() {
+            Ok(size) => size,
+            Err(e) => break Err(TuiError::Terminal(e)),
+        };
         let areas = view::layout(Rect::new(0, 0, size.width, size.height), &app);
         state.request(&app, areas.map(|a| a.picture));
         let now = Instant::now();
@@ -107,9 +110,13 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<(), TuiError
         if (redraw || pacer.needs_exact(now)) && pacer.may_draw(now) {
             let started = Instant::now();
             let cheap = app.present_previews(pacer.moving(now) && pacer.should_ask());
-            guard.draw(|f| f.render_widget(&app, f.area()))?;
+            if let Err(e) = guard.draw(|f| f.render_widget(&app, f.area())) {
+                break Err(TuiError::Terminal(e));
+            }
             if pacer.should_ask() {
-                guard.ask(pacer::QUERY)?;
+                if let Err(e) = guard.ask(pacer::QUERY) {
+                    break Err(TuiError::Terminal(e));
+                }
                 pacer.asked(now, cheap);
             } else {
                 pacer.drew(cheap);
@@ -118,7 +125,7 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<(), TuiError
             redraw = false;
         }
         if app.quit {
-            break;
+            break Ok(Exit::Quit);
         }
         let wait = pacer.wake_at().map_or(TICK, |at| {
             at.saturating_duration_since(Instant::now()).min(TICK)
@@ -126,7 +133,9 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<(), TuiError
         let first = match rx.recv_timeout(wait) {
             Ok(e) => Some(e),
             Err(RecvTimeoutError::Timeout) => None,
-            Err(RecvTimeoutError::Disconnected) => break,
+            Err(RecvTimeoutError::Disconnected) => {
+                break Err(TuiError::EventsStopped);
+            }
         };
         redraw |= first.is_none() && app.is_exporting();
         // Handle everything already queued before drawing again: a held key draws once.
@@ -165,16 +174,24 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<(), TuiError
             }
         }
         update::apply(&mut app, Action::Tick);
-        if signalled.load(Ordering::Relaxed) {
-            drop(guard);
-            if app.doc.is_dirty() {
-                let path = recovery::write(app.doc.scene(), app.doc.path())?;
-                eprintln!("rastray: unsaved edits written to {}", path.display());
-            }
-            return Ok(());
+        if let Some(problem) = autosave.note(&app) {
+            app.error(problem);
         }
-    }
-    Ok(())
+        if let Some(signal) = signals.received() {
+            break Ok(Exit::Signal(signal));
+        }
+    };
+    // Edits reach the disk before the terminal is touched: it may be gone.
+    let recovered = match ended {
+        Ok(Exit::Quit) => autosave.quit().map(|()| None),
+        _ => autosave.flush(&app).transpose(),
+    };
+    drop(guard);
+    recovery::report(&recovered);
+    // A lost terminal fails a draw just before its SIGHUP arrives: the signal tells the story.
+    signals
+        .received()
+        .map_or(ended, |signal| Ok(Exit::Signal(signal)))
 }
 
 /// The app on the scene at `path`, or on the built-in scene.
