@@ -8,7 +8,7 @@ use crate::render::{Algorithm, RenderOptions, Size};
 use crate::scene::{Object, Shape, ShapeKind};
 use crate::tui::action::Action;
 use crate::tui::app::{App, ExportField, ExportForm, LineEdit, Mode, PromptPurpose};
-use crate::tui::export_job::ExportJob;
+use crate::tui::export_job::{ExportJob, export_output};
 
 pub(super) fn path_text(app: &App) -> String {
     app.path
@@ -218,12 +218,14 @@ pub(super) fn start_export(app: &mut App, form: &ExportForm) -> Result<(), Strin
     options.check().map_err(|e| e.to_string())?;
     let path = PathBuf::from(form.path.trim());
     if path.as_os_str().is_empty() {
-        return Err("type the PNG's path".into());
+        return Err("type the file's path".into());
     }
+    let output = export_output(&path, "0")?;
     app.export = Some(ExportJob::start(
         app.scene.clone(),
         &app.base_dir,
         options,
+        output,
         path.clone(),
     ));
     app.info(format!(
