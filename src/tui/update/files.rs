@@ -151,6 +151,7 @@ pub(super) fn open_export(app: &mut App) {
         size: "1920x1080".into(),
         algorithm: app.algorithm,
         samples: "1".into(),
+        turntable: "0".into(),
         field: ExportField::Path,
         pristine: true,
         error: None,
@@ -164,6 +165,7 @@ pub(super) fn export_form(app: &mut App, mut form: ExportForm, action: Action) -
         ExportField::Path => Some(&mut form.path),
         ExportField::Size => Some(&mut form.size),
         ExportField::Samples => Some(&mut form.samples),
+        ExportField::Turntable => Some(&mut form.turntable),
         ExportField::Algorithm => None,
     };
     if let Some(text) = text {
@@ -220,7 +222,7 @@ pub(super) fn start_export(app: &mut App, form: &ExportForm) -> Result<(), Strin
     if path.as_os_str().is_empty() {
         return Err("type the file's path".into());
     }
-    let output = export_output(&path, "0")?;
+    let output = export_output(&path, &form.turntable)?;
     app.export = Some(ExportJob::start(
         app.scene.clone(),
         &app.base_dir,
