@@ -4,8 +4,7 @@
 
 use std::io::Write;
 
-use super::format::PngDepth;
-use super::png::PngSamples;
+use super::png::samples8;
 use crate::render::Frame;
 
 /// NeuQuant's sampling: 1 is slowest and best, 30 fastest; 10 is the usual balance.
@@ -14,9 +13,7 @@ const QUANTIZER_SPEED: i32 = 10;
 /// `frame` as a GIF frame shown for `delay` hundredths of a second, palette chosen and
 /// compressed: ready for [`write_frame`].
 pub fn gif_frame(frame: &Frame, delay: u16) -> gif::Frame<'static> {
-    let PngSamples::Eight(samples) = PngSamples::of(frame, PngDepth::Eight) else {
-        unreachable!("8-bit samples are bytes");
-    };
+    let samples = samples8(frame);
     let mut rgba: Vec<u8> = if frame.alpha.is_some() {
         samples
             .chunks_exact(4)

@@ -20,9 +20,7 @@ impl PngSamples {
     /// The samples of `frame` at `depth`: RGBA when the frame has alpha, else RGB.
     pub fn of(frame: &Frame, depth: PngDepth) -> PngSamples {
         match depth {
-            PngDepth::Eight => PngSamples::Eight(samples(frame, encode_srgb, |a| {
-                (a.clamp(0.0, 1.0) * 255.0 + 0.5) as u8
-            })),
+            PngDepth::Eight => PngSamples::Eight(samples8(frame)),
             PngDepth::Sixteen => PngSamples::Sixteen(samples(frame, encode_srgb16, |a| {
                 (a.clamp(0.0, 1.0) * 65535.0 + 0.5) as u16
             })),
@@ -36,6 +34,13 @@ impl PngSamples {
             PngSamples::Sixteen(values) => values.iter().flat_map(|v| v.to_be_bytes()).collect(),
         }
     }
+}
+
+/// The 8-bit samples of `frame`: RGBA when the frame has alpha, else RGB.
+pub fn samples8(frame: &Frame) -> Vec<u8> {
+    samples(frame, encode_srgb, |a| {
+        (a.clamp(0.0, 1.0) * 255.0 + 0.5) as u8
+    })
 }
 
 /// Each pixel's colour through `encode`, straight when the frame has alpha, followed by its

@@ -119,16 +119,18 @@ pub fn render_turntable(
     };
     let mut out = BufWriter::new(AtomicFile::create(path).map_err(|e| ExportError::io(path, e))?);
     progress.start(turntable.frames as u64);
-    // The frames of a batch share the render threads: each renderer uses the pool it runs on.
-    let per_frame = RenderOptions {
-        threads: None,
-        ..*options
+    let orbit = Orbit {
+        world,
+        camera,
+        // The frames of a batch share the render threads: each renderer uses the pool it runs on.
+        options: RenderOptions {
+            threads: None,
+            ..*options
+        },
+        turntable,
     };
-    let render_all = |out: &mut BufWriter<AtomicFile>| {
-        render_frames(
-            world, camera, &per_frame, turntable, &animation, out, path, progress,
-        )
-    };
+    let render_all =
+        |out: &mut BufWriter<AtomicFile>| render_frames(&orbit, &animation, out, path, progress);
     match options.threads {
         None => render_all(&mut out)?,
         Some(threads) => rayon::ThreadPoolBuilder::new()
@@ -151,22 +153,43 @@ pub fn render_turntable(
     })
 }
 
-/// Renders every frame of `turntable`, as many at once as the current pool has threads, and
-/// writes them in order to `out` on a thread of their own.
-#[allow(clippy::too_many_arguments)]
-fn render_frames(
-    world: &Arc<World>,
-    camera: &Camera,
-    options: &RenderOptions,
+/// What every frame of one turntable shares.
+struct Orbit<'a> {
+    world: &'a Arc<World>,
+    /// The camera of frame 0.
+    camera: &'a Camera,
+    /// The options of each frame's render.
+    options: RenderOptions,
     turntable: Turntable,
+}
+
+impl Orbit<'_> {
+    /// Renders frame `k` into `frame` with `renderer`.
+    fn render(
+        &self,
+        k: u32,
+        renderer: &mut Renderer,
+        frame: &mut Frame,
+    ) -> Result<(), RenderError> {
+        let camera = self.turntable.camera(self.camera, k);
+        renderer.render(self.world, &camera, &Progress::new(), frame)?;
+        Ok(())
+    }
+}
+
+/// Renders every frame of `orbit`, as many at once as the current pool has threads, and
+/// writes them in order to `out` on a thread of their own.
+fn render_frames(
+    orbit: &Orbit,
     animation: &Animation,
     out: &mut BufWriter<AtomicFile>,
     path: &Path,
     progress: &Progress,
 ) -> Result<(), ExportError> {
+    let frames = orbit.turntable.frames;
     let batch = rayon::current_num_threads().max(1);
     let mut slots: Vec<(Renderer, Frame)> = (0..batch)
-        .map(|_| (Renderer::new(*options), Frame::default()))
+        .map(|_| (Renderer::new(orbit.options), Frame::default()))
         .collect();
     let encode_error = |message: String| ExportError::encode(path, animation.format, message);
     std::thread::scope(|s| {
@@ -180,15 +203,14 @@ fn render_frames(
             writer.finish().map_err(encode_error)
         });
         let rendered = (|| {
-            for first in (0..turntable.frames).step_by(batch) {
+            for first in (0..frames).step_by(batch) {
                 progress.check().map_err(RenderError::from)?;
-                let last = (first + batch as u32).min(turntable.frames);
+                let last = (first + batch as u32).min(frames);
                 let ready: Vec<Result<ReadyFrame, RenderError>> = slots
                     .par_iter_mut()
                     .zip(first..last)
                     .map(|((renderer, frame), k)| {
-                        let view = turntable.camera(camera, k);
-                        renderer.render(world, &view, &Progress::new(), frame)?;
+                        orbit.render(k, renderer, frame)?;
                         Ok(animation.ready(frame))
                     })
                     .collect();
