@@ -2,9 +2,9 @@
 //! Whitted ray tracer, and compare the three.
 //!
 //! The pipeline is [`Scene`] (the TOML model, [`scene`]) → [`World`] (world-space face lists
-//! with normals, [`mesh`]) → [`Renderer`] ([`render`]) → [`Frame`] (linear RGB) → PNG
-//! ([`export`]) or the terminal preview ([`tui`]). A renderer prepares a world once (the ray
-//! tracer's BVH) and then renders it from any camera, into a frame you keep:
+//! with normals, [`mesh`]) → [`Renderer`] ([`render`]) → [`Frame`] (linear RGB) → PNG,
+//! OpenEXR or a turntable ([`export`]) or the terminal preview ([`tui`]). A renderer prepares a
+//! world once (the ray tracer's BVH) and then renders it from any camera, into a frame you keep:
 //!
 //! ```
 //! use std::{path::Path, sync::Arc};
@@ -17,13 +17,14 @@
 //! let mut renderer = Renderer::new(RenderOptions::new(Algorithm::Ray, 320, 180));
 //! let mut frame = Frame::default();
 //! let stats = renderer.render(&world, &scene.camera, &Progress::new(), &mut frame)?;
-//! export::save_png(&frame, &std::env::temp_dir().join("rastray-example.png"))?;
+//! let png = std::env::temp_dir().join("rastray-example.png");
+//! export::save_image(&frame, export::ImageFormat::PNG8, &png)?;
 //! println!("{} triangles, {} rays in {:?}", stats.triangles, stats.rays.total(), stats.total());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! [`export::render_to_png`] does the last four lines in one call. `docs/ARCHITECTURE.md` maps
-//! the modules.
+//! [`export::render_to_file`] does the last five lines in one call, for an image or a
+//! turntable. `docs/ARCHITECTURE.md` maps the modules.
 #![forbid(unsafe_code)]
 
 pub mod atomic_file;

@@ -3,6 +3,7 @@
 
 mod algorithm_arg;
 mod bench;
+mod format_arg;
 mod info;
 mod render;
 
@@ -51,7 +52,7 @@ impl From<ColorArg> for ColorMode {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Render a scene to a PNG file.
+    /// Render a scene to an image (PNG, OpenEXR) or a turntable (GIF, animated PNG).
     Render(render::RenderArgs),
     /// Print a scene's objects, triangle counts and bounds.
     Info {

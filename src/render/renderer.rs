@@ -6,6 +6,7 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use rayon::ThreadPool;
+use rayon::prelude::*;
 
 use super::algorithm::Algorithm;
 use super::camera::View;
@@ -14,8 +15,8 @@ use super::frame::{Frame, box_filter};
 use super::options::RenderOptions;
 use super::prepared::Prepared;
 use super::progress::{Cancelled, Progress};
-use super::raster::{render_gouraud, render_phong};
-use super::ray::trace_into;
+use super::raster::{raster_coverage, render_gouraud, render_phong};
+use super::ray::{primary_coverage, trace_into};
 use super::scratch::Scratch;
 use super::stats::{RayCounts, RenderStats};
 use crate::scene::Camera;
@@ -94,8 +95,10 @@ impl Renderer {
     /// Renders `world` seen by `camera` into `frame`, which takes the options' size; its buffer
     /// is kept when it has that size already (a live preview then skips faulting in fresh
     /// memory, which for 1920×1080 costs as much as a render). Supersampling renders N× larger
-    /// and box-filters down, the same for every algorithm. `progress` counts rows of the
-    /// supersampled image; cancelling it stops the render with [`RenderError::Cancelled`].
+    /// and box-filters down, the same for every algorithm; with [`RenderOptions::alpha`], a
+    /// first pass finds which samples some surface covers, and their share is the alpha.
+    /// `progress` counts rows of the supersampled image, once per pass; cancelling it stops
+    /// the render with [`RenderError::Cancelled`].
     pub fn render(
         &mut self,
         world: &Arc<World>,
@@ -176,10 +179,11 @@ fn render_frame(
     let started = Instant::now();
     let n = options.samples;
     let full = View::new(camera, options.width * n, options.height * n);
-    progress.start(full.height as u64);
+    let passes = if options.alpha { 2 } else { 1 };
+    progress.start(full.height as u64 * passes);
     let strip_rows = (STRIP_SAMPLES / (full.width as u64 * (n * n) as u64))
         .clamp(1, options.height as u64) as u32;
-    frame.reshape(options.width, options.height);
+    frame.reshape(options.width, options.height, options.alpha);
     let (prepared, mut stats) = prepare_scene(scene, world, options.algorithm, progress)?;
     let world = prepared.world();
     let no_rays = RayCounts::default;
@@ -191,6 +195,28 @@ fn render_frame(
             trace_into(accel, world, view, options, progress, out)
         }
     };
+    // Coverage, for alpha, by the algorithm's own test: the rasterizer's depth buffer (drawn
+    // into `work`) or the primary rays' hits.
+    let cover = |view: &View, work: &mut [Vec3], covered: &mut [f32]| match options.algorithm {
+        Algorithm::Gouraud | Algorithm::Phong => {
+            raster_coverage(world, view, progress, work, covered)
+        }
+        Algorithm::Ray => {
+            let accel = prepared.accel().expect("prepared for the ray tracer");
+            primary_coverage(accel, view, progress, covered)
+        }
+    };
+    // Draws `view` into `out`; with alpha, finds the coverage first and leaves the background
+    // out of the colours, which are then premultiplied.
+    let draw_covered = |view: &View, out: &mut [Vec3], covered: Option<&mut [f32]>| {
+        let Some(covered) = covered else {
+            return draw(view, out);
+        };
+        cover(view, out, covered)?;
+        let cast = draw(view, out)?;
+        leave_out_background(out, covered);
+        Ok(cast)
+    };
     let width = options.width as usize;
     let mut rays = RayCounts::default();
     // Supersampled strips are drawn into one scratch strip and box-filtered into the frame;
@@ -198,15 +224,25 @@ fn render_frame(
     for first in (0..options.height).step_by(strip_rows as usize) {
         let rows = strip_rows.min(options.height - first);
         let view = full.rows(first * n, rows * n);
-        let out = &mut frame.pixels[first as usize * width..(first + rows) as usize * width];
+        let range = first as usize * width..(first + rows) as usize * width;
+        let out = &mut frame.pixels[range.clone()];
+        let alpha = frame.alpha.as_deref_mut().map(|a| &mut a[range]);
         let cast = if n == 1 {
-            draw(&view, out)?
+            draw_covered(&view, out, alpha)?
         } else {
-            let samples = &mut scratch.samples;
-            samples.resize(view.width as usize * view.height as usize, Vec3::ZERO);
-            let cast = draw(&view, samples)?;
+            let Scratch { samples, coverage } = &mut *scratch;
+            let len = view.width as usize * view.height as usize;
+            samples.resize(len, Vec3::ZERO);
+            let covered = alpha.is_some().then(|| {
+                coverage.resize(len, 0.0);
+                &mut coverage[..]
+            });
+            let cast = draw_covered(&view, samples, covered)?;
             let filtering = Instant::now();
             box_filter(samples, view.width, n, out);
+            if let Some(alpha) = alpha {
+                box_filter(coverage, view.width, n, alpha);
+            }
             stats.filter += filtering.elapsed();
             cast
         };
@@ -217,4 +253,13 @@ fn render_frame(
         .elapsed()
         .saturating_sub(stats.prepare + stats.filter);
     Ok(stats)
+}
+
+/// Zeroes the colour of every sample no surface covers (`covered` 0; 1 keeps it): the colours
+/// become premultiplied by coverage.
+fn leave_out_background(colors: &mut [Vec3], covered: &[f32]) {
+    colors
+        .par_iter_mut()
+        .zip(covered)
+        .for_each(|(color, &c)| *color *= c);
 }

@@ -8,4 +8,6 @@ use glam::Vec3;
 pub(super) struct Scratch {
     /// One strip of the supersampled image, before it is box-filtered into the frame.
     pub(super) samples: Vec<Vec3>,
+    /// The coverage of that strip's samples (1 covered, 0 not), when alpha is rendered.
+    pub(super) coverage: Vec<f32>,
 }

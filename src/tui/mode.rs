@@ -42,15 +42,17 @@ pub enum ExportField {
     Size,
     Algorithm,
     Samples,
+    Turntable,
 }
 
 impl ExportField {
     /// Every field, in dialog order.
-    pub const ALL: [ExportField; 4] = [
+    pub const ALL: [ExportField; 5] = [
         ExportField::Path,
         ExportField::Size,
         ExportField::Algorithm,
         ExportField::Samples,
+        ExportField::Turntable,
     ];
 }
 
@@ -61,6 +63,8 @@ pub struct ExportForm {
     pub size: String,
     pub algorithm: Algorithm,
     pub samples: String,
+    /// Turntable frames; 0 writes a still image.
+    pub turntable: String,
     pub field: ExportField,
     /// The field shows its old value: the first typed character replaces it.
     pub pristine: bool,

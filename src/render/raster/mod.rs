@@ -2,11 +2,13 @@
 //! (`fragments`), to a shader; Gouraud lights the vertices and interpolates the colour, Phong
 //! interpolates the normal and lights every pixel.
 
+mod coverage;
 mod fragments;
 mod gouraud;
 mod phong;
 mod zbuffer;
 
+pub(crate) use coverage::raster_coverage;
 pub(crate) use gouraud::render_gouraud;
 pub(crate) use phong::render_phong;
 #[cfg(test)]

@@ -8,9 +8,11 @@ mod bvh_build;
 mod half_line;
 mod intersect;
 mod packet;
+mod primary;
 mod tracer;
 
 pub(crate) use accel::SceneAccel;
+pub(crate) use primary::primary_coverage;
 pub(crate) use tracer::trace_into;
 
 #[cfg(test)]

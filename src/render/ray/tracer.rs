@@ -12,8 +12,8 @@ use rayon::prelude::*;
 
 use super::accel::SceneAccel;
 use super::half_line::Ray;
-use super::packet::RayPacket;
-use crate::render::camera::{NEAR, View};
+use super::primary::primary_packet;
+use crate::render::camera::View;
 use crate::render::materials::ObjectMaterials;
 use crate::render::options::RenderOptions;
 use crate::render::progress::{Cancelled, Progress};
@@ -138,10 +138,8 @@ impl Tracer<'_> {
     ) -> [Vec3; WIDTH] {
         let x = F32x8::from(pixel.map(|(i, _)| i as f32 + 0.5));
         let y = F32x8::from(pixel.map(|(_, j)| j as f32 + 0.5));
-        let dir = view.pixel_direction(x, y).normalize_or_zero();
-        // Start where the rasterizer's near plane cuts each ray, so both see the same.
-        let t_min = F32x8::splat(NEAR) / dir.dot(V3::splat(view.forward));
-        let packet = RayPacket::new(V3::splat(view.eye), dir, t_min);
+        let packet = primary_packet(view, x, y);
+        let dir = packet.dir;
         stats.primary += real.count_ones() as u64;
         let hits = self.accel.intersect_packet(&packet);
         let hit_lanes = hits.hit().move_mask() as u32 & real;

@@ -8,7 +8,7 @@ use crate::render::{Algorithm, RenderOptions, Size};
 use crate::scene::{Object, Shape, ShapeKind};
 use crate::tui::action::Action;
 use crate::tui::app::{App, Previews};
-use crate::tui::export_job::ExportJob;
+use crate::tui::export_job::{ExportJob, export_output};
 use crate::tui::mode::{ExportField, ExportForm, LineEdit, Mode, PromptPurpose};
 use crate::tui::selection::{Selection, wrap_step};
 
@@ -112,6 +112,7 @@ pub(super) fn open_export(app: &mut App) {
         size: "1920x1080".into(),
         algorithm: app.view.algorithm(),
         samples: "1".into(),
+        turntable: "0".into(),
         field: ExportField::Path,
         pristine: true,
         error: None,
@@ -125,6 +126,7 @@ pub(super) fn export_form(app: &mut App, mut form: ExportForm, action: Action) -
         ExportField::Path => Some(&mut form.path),
         ExportField::Size => Some(&mut form.size),
         ExportField::Samples => Some(&mut form.samples),
+        ExportField::Turntable => Some(&mut form.turntable),
         ExportField::Algorithm => None,
     };
     if let Some(text) = text {
@@ -179,15 +181,17 @@ pub(super) fn start_export(app: &mut App, form: &ExportForm) -> Result<(), Strin
     options.check().map_err(|e| e.to_string())?;
     let path = PathBuf::from(form.path.trim());
     if path.as_os_str().is_empty() {
-        return Err("type the PNG's path".into());
+        return Err("type the file's path".into());
     }
     // The export shows what the preview shows: the scene as edited, seen from the view.
     let mut scene = app.doc.scene().clone();
     scene.camera = app.view.camera();
+    let output = export_output(&path, &form.turntable)?;
     app.export = Some(ExportJob::start(
         scene,
         app.doc.base_dir(),
         options,
+        output,
         path.clone(),
     ));
     app.info(format!(

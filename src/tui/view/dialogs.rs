@@ -84,13 +84,13 @@ impl Widget for Prompt<'_> {
     }
 }
 
-/// File, size, algorithm and samples of a PNG export.
+/// File, size, algorithm, samples and turntable frames of an export.
 pub struct ExportDialog<'a>(pub &'a ExportForm);
 
 impl Widget for ExportDialog<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let form = self.0;
-        let popup = centered(area, 60, 9);
+        let popup = centered(area, 60, 10);
         Clear.render(popup, buf);
         let row = |label: &str, field: ExportField, value: String| {
             let active = form.field == field;
@@ -103,18 +103,24 @@ impl Widget for ExportDialog<'_> {
             ])
         };
         let algorithm = format!("◀ {} ▶", form.algorithm);
+        let mut turntable = row("turntable", ExportField::Turntable, form.turntable.clone());
+        turntable.push_span(Span::styled(
+            "  frames (.gif, .png); 0: image (.png, .exr)",
+            theme::DIM,
+        ));
         Paragraph::new(vec![
             row("file", ExportField::Path, form.path.clone()),
             row("size", ExportField::Size, form.size.clone()),
             row("algorithm", ExportField::Algorithm, algorithm),
             row("samples", ExportField::Samples, form.samples.clone()),
+            turntable,
             error_line(&form.error),
             Line::styled(
                 "↑↓ field · ←→ algorithm · Enter export · Esc cancel",
                 theme::DIM,
             ),
         ])
-        .block(pane("Export PNG", true))
+        .block(pane("Export", true))
         .render(popup, buf);
     }
 }
