@@ -5,6 +5,7 @@ mod algorithm_arg;
 mod bench;
 mod info;
 mod render;
+mod view;
 
 use std::path::{Path, PathBuf};
 
@@ -51,6 +52,8 @@ impl From<ColorArg> for ColorMode {
 pub enum Command {
     /// Render a scene to a PNG file.
     Render(render::RenderArgs),
+    /// Render a scene once and print it to the terminal: real pixels where it can show them.
+    View(view::ViewArgs),
     /// Print a scene's objects, triangle counts and bounds.
     Info {
         /// Scene file.
@@ -64,6 +67,7 @@ pub enum Command {
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Some(Command::Render(args)) => render::run(&args),
+        Some(Command::View(args)) => view::run(&args),
         Some(Command::Info { scene }) => info::run(&scene),
         Some(Command::Bench(args)) => bench::run_bench(&args),
         None => {
