@@ -97,7 +97,8 @@ mod tests {
     fn plain_text_is_a_ramp_with_no_escape() {
         let text = encode_plain(&image());
         assert!(!text.contains('\x1b'));
-        // White over nothing is the lightest character; black is blank and trimmed.
-        assert_eq!(text, "-\n@\n");
+        // Red over blue: mean luminance (0.2126 + 0.0722) / 2 ≈ 0.14 → '.', the second step;
+        // white over nothing is the lightest character; black is blank and trimmed.
+        assert_eq!(text, ".\n@\n");
     }
 }
