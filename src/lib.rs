@@ -33,6 +33,7 @@ pub mod export;
 pub mod mesh;
 pub mod render;
 pub mod scene;
+pub mod terminal_image;
 pub mod tui;
 pub mod world;
 

@@ -6,6 +6,7 @@ mod bench;
 mod format_arg;
 mod info;
 mod render;
+mod view;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -54,6 +55,8 @@ impl From<ColorArg> for ColorMode {
 pub enum Command {
     /// Render a scene to an image (PNG, OpenEXR) or a turntable (GIF, animated PNG).
     Render(render::RenderArgs),
+    /// Render a scene once and print it to the terminal: real pixels where it can show them.
+    View(view::ViewArgs),
     /// Print a scene's objects, triangle counts and bounds.
     Info {
         /// Scene file.
@@ -68,6 +71,7 @@ pub enum Command {
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
         Some(Command::Render(args)) => render::run(&args).map(|()| ExitCode::SUCCESS),
+        Some(Command::View(args)) => view::run(&args).map(|()| ExitCode::SUCCESS),
         Some(Command::Info { scene }) => info::run(&scene).map(|()| ExitCode::SUCCESS),
         Some(Command::Bench(args)) => bench::run_bench(&args).map(|()| ExitCode::SUCCESS),
         None => {
