@@ -7,6 +7,7 @@
 
 pub mod action;
 pub mod app;
+pub mod color_probe;
 pub mod compact_backend;
 pub mod document;
 pub mod error;
@@ -65,7 +66,10 @@ enum Event {
 /// quits or the process receives SIGTERM, SIGHUP or SIGINT; unsaved edits then go to the
 /// recovery file.
 pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<(), TuiError> {
-    let mut app = load(scene_path.as_deref())?.with_color(color);
+    let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
+    let mut app = load(scene_path.as_deref())?
+        .with_color(color)
+        .with_plain_interface(no_color);
     if let Some(notice) = recovery::notice(scene_path.as_deref()) {
         app.info(notice);
     }
