@@ -155,7 +155,11 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<(), TuiError
                     if let Some(log) = &mut state.latency {
                         log.key_at.get_or_insert(Instant::now());
                     }
-                    input::map(&app, &ev, picture)
+                    if areas.is_some() {
+                        input::map(&app, &ev, picture)
+                    } else {
+                        input::map_too_small(&app, &ev)
+                    }
                 }
                 // A frame for a superseded request is stale: dropped.
                 Event::Render(reply) if reply.id() == state.latest => {
