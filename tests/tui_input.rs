@@ -348,6 +348,6 @@ fn on_the_too_small_screen_only_quit_and_help_act() {
     assert_eq!(input::map_too_small(&app, &plain('q')), Some(Action::Quit));
     let help = input::map_too_small(&app, &plain('?')).expect("? opens the help");
     apply(&mut app, help);
-    assert!(matches!(app.mode, Mode::Help(_)));
+    assert!(matches!(app.mode(), Mode::Help(_)));
     assert_eq!(app.document().generation(), before);
 }
