@@ -321,3 +321,33 @@ fn catch_alls_take_only_what_nothing_else_takes() {
     assert_eq!(map(&help, &plain('j'), PREVIEW), Some(Action::Down));
     assert_eq!(map(&help, &plain('q'), PREVIEW), Some(Action::Cancel));
 }
+
+#[test]
+fn on_the_too_small_screen_only_quit_and_help_act() {
+    let mut app = App::new(default_scene(), None, PathBuf::new());
+    let before = app.document().generation();
+    let mut acted_when_big = 0;
+    for c in ('a'..='z')
+        .chain('A'..='Z')
+        .chain("+-[]<>/ 0123456789".chars())
+    {
+        let event = plain(c);
+        acted_when_big += usize::from(map(&app, &event, PREVIEW).is_some());
+        if let Some(action) = input::map_too_small(&app, &event) {
+            assert!(
+                matches!(action, Action::Quit | Action::Help),
+                "{c:?} gave {action:?}"
+            );
+        }
+    }
+    for code in [KeyCode::Delete, KeyCode::Tab, KeyCode::Enter, KeyCode::Up] {
+        let event = key(code, KeyModifiers::NONE);
+        assert_eq!(input::map_too_small(&app, &event), None, "{code:?}");
+    }
+    assert!(acted_when_big > 5, "the same keys act on a full screen");
+    assert_eq!(input::map_too_small(&app, &plain('q')), Some(Action::Quit));
+    let help = input::map_too_small(&app, &plain('?')).expect("? opens the help");
+    apply(&mut app, help);
+    assert!(matches!(app.mode(), Mode::Help(_)));
+    assert_eq!(app.document().generation(), before);
+}

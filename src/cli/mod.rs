@@ -27,7 +27,8 @@ pub struct Cli {
     pub command: Option<Command>,
     /// Scene file to open (the built-in default scene when absent).
     pub scene: Option<PathBuf>,
-    /// Colours of the terminal preview (default: truecolor when COLORTERM says so, else 256).
+    /// Colours of the terminal preview (default: truecolor when COLORTERM says so or the terminal
+    /// answers that it has it, else 256). Wins over detection and over NO_COLOR.
     #[arg(long, value_enum)]
     pub color: Option<ColorArg>,
 }
@@ -75,11 +76,25 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Info { scene }) => info::run(&scene).map(|()| ExitCode::SUCCESS),
         Some(Command::Bench(args)) => bench::run_bench(&args).map(|()| ExitCode::SUCCESS),
         None => {
+            refuse_dumb_terminal(std::env::var("TERM").ok().as_deref())?;
             let color = cli.color.map_or_else(ColorMode::detect, ColorMode::from);
             let exit = rastray::tui::run(cli.scene, color)?;
             Ok(ExitCode::from(exit.code()))
         }
     }
+}
+
+/// The editor moves the cursor and redraws the screen: a terminal that says it cannot
+/// (`TERM=dumb`) gets a message pointing to the commands that need none of that.
+fn refuse_dumb_terminal(term: Option<&str>) -> anyhow::Result<()> {
+    if term == Some("dumb") {
+        anyhow::bail!(
+            "the editor needs a terminal that can move the cursor (TERM is \"dumb\"); \
+             `rastray view SCENE` prints a picture, `rastray render SCENE -o OUT.png` writes one, \
+             `rastray info SCENE` lists a scene"
+        );
+    }
+    Ok(())
 }
 
 /// Loads the scene at `path`, or the built-in default scene; returns it with the directory its

@@ -109,6 +109,13 @@ impl App {
         self
     }
 
+    /// The same editor drawing its interface without colours (`NO_COLOR`); the preview is a
+    /// picture and keeps its own.
+    pub fn with_plain_interface(mut self, plain: bool) -> App {
+        self.view.set_plain(plain);
+        self
+    }
+
     /// The same editor showing render times or not (off for reproducible screen captures).
     pub fn with_timings(mut self, show: bool) -> App {
         self.view.set_show_timings(show);

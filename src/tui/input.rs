@@ -29,6 +29,21 @@ pub fn map(app: &App, event: &Event, preview: Rect) -> Option<Action> {
     }
 }
 
+/// The action for a terminal event while the terminal is too small to show the editor: only
+/// quitting and the help (and the answers inside them) work, since nothing else can be seen.
+pub fn map_too_small(app: &App, event: &Event) -> Option<Action> {
+    let Event::Key(key) = event else {
+        return None;
+    };
+    let action = map(app, event, Rect::default())?;
+    let seen = matches!(app.mode, Mode::Help(_) | Mode::ConfirmQuit);
+    let allowed = matches!(
+        action,
+        Action::Quit | Action::QuitNow | Action::SaveAndQuit | Action::Help
+    );
+    (key.kind != KeyEventKind::Release && (seen || allowed)).then_some(action)
+}
+
 /// The parts of the key table that work now, the first taking precedence.
 pub fn contexts(mode: &Mode, focus: Focus) -> &'static [Context] {
     match mode {

@@ -8,6 +8,7 @@
 pub mod action;
 pub mod app;
 pub mod autosave;
+pub mod color_probe;
 pub mod compact_backend;
 pub mod document;
 pub mod error;
@@ -68,7 +69,10 @@ enum Event {
 /// quits or the process receives SIGTERM, SIGHUP or SIGINT. Unsaved edits are kept in the
 /// recovery file meanwhile, and written there at once when a signal or an error ends the editor.
 pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<Exit, TuiError> {
-    let mut app = load(scene_path.as_deref())?.with_color(color);
+    let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
+    let mut app = load(scene_path.as_deref())?
+        .with_color(color)
+        .with_plain_interface(no_color);
     if let Some(notice) = recovery::notice(scene_path.as_deref()) {
         app.info(notice);
     }
@@ -160,7 +164,11 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<Exit, TuiErr
                     if let Some(log) = &mut state.latency {
                         log.key_at.get_or_insert(Instant::now());
                     }
-                    input::map(&app, &ev, picture)
+                    if areas.is_some() {
+                        input::map(&app, &ev, picture)
+                    } else {
+                        input::map_too_small(&app, &ev)
+                    }
                 }
                 // A frame for a superseded request is stale: dropped.
                 Event::Render(reply) if reply.id() == state.latest => {

@@ -17,14 +17,10 @@ pub enum ColorMode {
 }
 
 impl ColorMode {
-    /// Truecolor when `COLORTERM` says the terminal has it, the 256-colour palette otherwise.
+    /// Truecolor when `COLORTERM` says so or the terminal answers that it has it, the
+    /// 256-colour palette otherwise (see [`super::color_probe`]).
     pub fn detect() -> ColorMode {
-        match std::env::var("COLORTERM") {
-            Ok(v) if v.eq_ignore_ascii_case("truecolor") || v.eq_ignore_ascii_case("24bit") => {
-                ColorMode::Truecolor
-            }
-            _ => ColorMode::Ansi256,
-        }
+        super::color_probe::detect()
     }
 
     /// The terminal colour for an 8-bit sRGB triple.

@@ -1,6 +1,8 @@
 //! The editor's colours and text styles, named by what they mark. Widgets use these names and
 //! write no colour of their own; only the preview's pixels bring other colours to the screen.
 
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Position, Rect};
 use ratatui::style::{Color, Modifier, Style};
 
 /// The terminal's own colour: what a cell shows where the editor sets none.
@@ -48,3 +50,53 @@ pub const TAG_SETTINGS: Style = Style::new().fg(Color::Cyan);
 pub const TAG_LIGHT: Style = Style::new().fg(Color::Yellow);
 /// The scene list's tag of an object.
 pub const TAG_OBJECT: Style = Style::new().fg(Color::Green);
+
+/// Takes the colours out of `area` except `keep` (the preview's picture): what `NO_COLOR` asks
+/// of the interface. A cell that had a background (a highlighted row, the typing line) is shown
+/// reversed instead, so highlights stay visible.
+pub fn strip_colors(buf: &mut Buffer, area: Rect, keep: Rect) {
+    for y in area.top()..area.bottom() {
+        for x in area.left()..area.right() {
+            if keep.contains(Position { x, y }) {
+                continue;
+            }
+            let Some(cell) = buf.cell_mut((x, y)) else {
+                continue;
+            };
+            if cell.bg != TERMINAL_DEFAULT {
+                cell.modifier.insert(Modifier::REVERSED);
+            }
+            cell.fg = TERMINAL_DEFAULT;
+            cell.bg = TERMINAL_DEFAULT;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stripping_leaves_the_picture_and_turns_backgrounds_into_reverse() {
+        let area = Rect::new(0, 0, 4, 2);
+        let mut buf = Buffer::empty(area);
+        buf.set_style(area, SELECTED);
+        buf.set_style(Rect::new(2, 0, 2, 2), Style::new().fg(Color::Rgb(1, 2, 3)));
+        strip_colors(&mut buf, area, Rect::new(3, 0, 1, 2));
+        let picture = &buf[(3, 1)];
+        assert_eq!(
+            (picture.fg, picture.bg),
+            (Color::Rgb(1, 2, 3), Color::Yellow)
+        );
+        assert!(!picture.modifier.contains(Modifier::REVERSED));
+        for x in 0..3 {
+            let cell = &buf[(x, 0)];
+            assert_eq!(
+                (cell.fg, cell.bg),
+                (TERMINAL_DEFAULT, TERMINAL_DEFAULT),
+                "x={x}"
+            );
+            assert!(cell.modifier.contains(Modifier::REVERSED), "x={x}");
+        }
+    }
+}

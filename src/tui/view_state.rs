@@ -20,6 +20,8 @@ pub struct ViewState {
     color: ColorMode,
     /// Whether render times are shown (off for reproducible screen captures).
     show_timings: bool,
+    /// Whether the interface is drawn without colours (`NO_COLOR`); the preview keeps its own.
+    plain: bool,
 }
 
 impl ViewState {
@@ -31,6 +33,7 @@ impl ViewState {
             compare: false,
             color: ColorMode::Truecolor,
             show_timings: true,
+            plain: false,
         }
     }
 
@@ -102,6 +105,16 @@ impl ViewState {
     /// Switches between the single preview and the three side by side.
     pub fn toggle_compare(&mut self) {
         self.compare = !self.compare;
+    }
+
+    /// Whether the interface is drawn without colours.
+    pub fn plain(&self) -> bool {
+        self.plain
+    }
+
+    /// Draws the interface without colours (`true`) or with the theme's.
+    pub fn set_plain(&mut self, plain: bool) {
+        self.plain = plain;
     }
 
     /// Draws the preview with `color`.

@@ -114,5 +114,8 @@ impl Widget for &App {
             Mode::ConfirmQuit => dialogs::ConfirmQuit.render(area, buf),
             Mode::Normal | Mode::Edit(_) => {}
         }
+        if self.view.plain() {
+            theme::strip_colors(buf, area, areas.picture);
+        }
     }
 }

@@ -32,9 +32,28 @@ pub fn hints(app: &App) -> &'static str {
             "↑↓ property · ←→ step (Shift ×10) · Enter type · u undo · Tab pane · ? help · q quit"
         }
         (Mode::Normal, Focus::Preview) => {
-            "←→↑↓ orbit · Shift pan · +/- zoom · r reset · C set camera · 1 2 3 algo · c compare · ? help"
+            "←→↑↓ orbit · Shift pan · +/- zoom · r reset · C set camera · 1 2 3 algo · c compare · ? help · q quit"
         }
     }
+}
+
+/// `hints` shortened to `width` columns: hints are dropped from the end, but the help and quit
+/// keys (`? …`, `q …`) always stay.
+pub fn fit_hints(hints: &str, width: usize) -> String {
+    const SEPARATOR: &str = " · ";
+    let mut items: Vec<&str> = hints.split(SEPARATOR).collect();
+    let essential = |item: &str| item.starts_with("? ") || item.starts_with("q ");
+    let length = |items: &[&str]| {
+        items.iter().map(|i| i.chars().count()).sum::<usize>()
+            + SEPARATOR.chars().count() * items.len().saturating_sub(1)
+    };
+    while length(&items) > width {
+        let Some(drop) = items.iter().rposition(|i| !essential(i)) else {
+            break;
+        };
+        items.remove(drop);
+    }
+    items.join(SEPARATOR)
 }
 
 impl Widget for StatusBar<'_> {
@@ -94,6 +113,25 @@ impl Widget for StatusBar<'_> {
             }
             None => Paragraph::new(line).render(top, buf),
         }
-        Paragraph::new(Line::styled(format!(" {}", hints(app)), theme::DIM)).render(bottom, buf);
+        let shown = fit_hints(hints(app), usize::from(bottom.width).saturating_sub(1));
+        Paragraph::new(Line::styled(format!(" {shown}"), theme::DIM)).render(bottom, buf);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fit_hints;
+
+    #[test]
+    fn hints_give_way_from_the_end_but_help_and_quit_stay() {
+        let hints = "↑↓ select · a add · d dup · ? help · q quit";
+        assert_eq!(fit_hints(hints, 80), hints);
+        assert_eq!(fit_hints(hints, 30), "↑↓ select · ? help · q quit");
+        assert_eq!(fit_hints(hints, 10), "? help · q quit");
+        for width in 15..60 {
+            let fitted = fit_hints(hints, width);
+            assert!(fitted.chars().count() <= width, "{width}: {fitted}");
+            assert!(fitted.ends_with("? help · q quit"), "{width}: {fitted}");
+        }
     }
 }
