@@ -24,7 +24,13 @@ fn colours_and_styles_are_written_only_in_the_theme() {
     // A preview pixel's own colour is data, not a theme choice: its two encodings are allowed.
     let pixel_encodings = ["Color::Rgb(", "Color::Indexed("];
     let mut offenders = Vec::new();
-    for file in files.iter().filter(|f| !f.ends_with("theme.rs")) {
+    // The theme picks colours; the terminal backend only encodes whatever it is handed, and
+    // the terminal-image encoders are not in this folder.
+    let chooses_nothing = ["theme.rs", "compact_backend.rs"];
+    for file in files
+        .iter()
+        .filter(|f| !chooses_nothing.iter().any(|name| f.ends_with(name)))
+    {
         let text = std::fs::read_to_string(file).expect("a readable source file");
         for (n, line) in text.lines().enumerate() {
             let mut rest = line.to_string();
