@@ -38,8 +38,8 @@ pub struct World {
     pub background: glam::Vec3,
     /// Deepest reflection recursion.
     pub max_depth: u32,
-    /// Light attenuation (all zero means none).
-    pub falloff: Falloff,
+    /// Distance attenuation of the lights; `None` means att(d) = 1.
+    pub falloff: Option<Falloff>,
 }
 
 /// Loaded OBJ models keyed by absolute path, reloaded when the file changes on disk.
@@ -130,7 +130,7 @@ impl World {
             ambient: scene.ambient,
             background: scene.background,
             max_depth: scene.max_depth,
-            falloff: scene.falloff.unwrap_or_default(),
+            falloff: scene.falloff,
         })
     }
 

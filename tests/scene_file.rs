@@ -206,3 +206,49 @@ fn a_scene_too_large_to_tessellate_is_refused_with_the_limit() {
         "{message}"
     );
 }
+
+#[test]
+fn no_falloff_has_one_form_however_the_file_spells_it() {
+    use rastray::scene::Falloff;
+    let load = |text: &str| from_toml_str(text, Path::new("f.toml")).expect("valid");
+    for spelling in [
+        "",
+        "falloff = { linear = 0.0, quadratic = 0.0 }\n",
+        "falloff = {}\n",
+        "[falloff]\nlinear = 0.0\n",
+    ] {
+        let scene = load(spelling);
+        assert_eq!(scene.falloff, None, "{spelling:?}");
+        assert!(!to_toml_string(&scene).contains("falloff"), "{spelling:?}");
+    }
+    let scene = load("falloff = { quadratic = 0.25 }\n");
+    assert_eq!(scene.falloff, Falloff::new(0.0, 0.25));
+    assert_eq!(
+        load(&to_toml_string(&scene)).falloff,
+        scene.falloff,
+        "kept by a round trip"
+    );
+    let world = rastray::World::build(&scene, Path::new(".")).expect("world");
+    assert_eq!(
+        world.falloff, scene.falloff,
+        "the world holds the same value"
+    );
+}
+
+#[test]
+fn zero_falloff_renders_exactly_like_none() {
+    let text = rastray::scene::DEFAULT_SCENE_TOML;
+    let with_zeros = format!("falloff = {{ linear = 0.0, quadratic = 0.0 }}\n{text}");
+    for algorithm in rastray::Algorithm::ALL {
+        let plain = common::draw(&common::scene(text), algorithm, 48, 32);
+        let zeros = common::draw(&common::scene(&with_zeros), algorithm, 48, 32);
+        assert_eq!(plain.pixels, zeros.pixels, "{algorithm}");
+    }
+    let falling = format!("falloff = {{ linear = 0.2 }}\n{text}");
+    let dimmer = common::draw(&common::scene(&falling), rastray::Algorithm::Phong, 48, 32);
+    let plain = common::draw(&common::scene(text), rastray::Algorithm::Phong, 48, 32);
+    assert_ne!(
+        plain.pixels, dimmer.pixels,
+        "a real falloff changes the image"
+    );
+}

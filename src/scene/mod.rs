@@ -1,6 +1,7 @@
 //! The scene model: what a `.toml` scene file holds, how it is read, checked and written.
 
 mod error;
+mod falloff;
 mod file;
 mod material;
 mod model;
@@ -8,8 +9,9 @@ mod object;
 mod validate;
 
 pub use error::SceneError;
+pub use falloff::Falloff;
 pub use file::{DEFAULT_SCENE_TOML, default_scene, from_toml_str, load, save, to_toml_string};
 pub use material::Material;
-pub use model::{Camera, Falloff, Light, Scene};
+pub use model::{Camera, Light, Scene};
 pub use object::{Object, Shape, ShapeKind};
 pub use validate::{FieldPath, Invalid, MAX_DEPTH, validate};
