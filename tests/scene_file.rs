@@ -208,6 +208,43 @@ fn a_scene_too_large_to_tessellate_is_refused_with_the_limit() {
 }
 
 #[test]
+fn out_of_range_messages_state_the_accepted_range() {
+    for (body, message) in [
+        (
+            "ambient = 2.0\n",
+            "`ambient` must be between 0 and 1, got 2",
+        ),
+        (
+            "[camera]\nfov = 180.0\n",
+            "`camera.fov` must be between 0 and 180 degrees (exclusive), got 180",
+        ),
+        (
+            "[[object]]\ntype = \"box\"\nsize = [1.0, 0.0, 1.0]\n",
+            "`object[0].size` width, height and depth must each be greater than 0 and at most 1e6, got [1, 0, 1]",
+        ),
+        (
+            "[[object]]\ntype = \"icosahedron\"\nradius = 1.0\nsubdivisions = 9\n",
+            "`object[0].subdivisions` must be between 0 and 8, got 9",
+        ),
+        (
+            "[[light]]\nposition = [0.0, 2e6, 0.0]\n",
+            "`light[0].position` coordinates must each be between -1e6 and 1e6, got [0, 2000000, 0]",
+        ),
+        (
+            "falloff = { linear = -0.5 }\n",
+            "`falloff.linear` must be between 0 and 1e6, got -0.5",
+        ),
+    ] {
+        let (error, m) = refused(body);
+        assert!(m.ends_with(message), "{m}");
+        let SceneError::Invalid { error, .. } = error else {
+            panic!("an out-of-range error: {m}")
+        };
+        assert!(m.contains(&error.path.to_string()), "{m}");
+    }
+}
+
+#[test]
 fn no_falloff_has_one_form_however_the_file_spells_it() {
     use rastray::scene::Falloff;
     let load = |text: &str| from_toml_str(text, Path::new("f.toml")).expect("valid");

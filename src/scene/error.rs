@@ -3,6 +3,8 @@
 
 use std::path::PathBuf;
 
+use super::validate::Invalid;
+
 /// A scene that could not be read, checked or written.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
@@ -21,12 +23,12 @@ pub enum SceneError {
         message: String,
     },
     /// A value out of range (NaN, negative size, coefficient above 1 …).
-    #[error("{path}{}: `{field}` {message}", line.map(|l| format!(":{l}")).unwrap_or_default())]
+    #[error("{path}{}: {error}", line.map(|l| format!(":{l}")).unwrap_or_default())]
     Invalid {
         path: PathBuf,
+        /// 1-based line of the value, or of the nearest enclosing table the file spells out.
         line: Option<usize>,
-        field: String,
-        message: String,
+        error: Invalid,
     },
     /// The scene would tessellate into more triangles than the renderers accept.
     #[error("the scene has {triangles} triangles; the limit is {limit}")]

@@ -5,8 +5,9 @@ use std::path::{Path, PathBuf};
 use toml::de::{DeTable, DeValue};
 
 use super::error::SceneError;
+use super::field_path::{FieldPath, PathSegment};
 use super::model::Scene;
-use super::validate::{FieldPath, PathSegment, validate};
+use super::validate::validate;
 use crate::atomic_file::write_atomically;
 
 /// The built-in default scene, the same text as `scenes/default.toml`.
@@ -38,8 +39,7 @@ pub fn from_toml_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         return Err(SceneError::Invalid {
             path: path.to_path_buf(),
             line,
-            field: invalid.path.to_string(),
-            message: invalid.message,
+            error: invalid,
         });
     }
     Ok(scene)

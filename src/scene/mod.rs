@@ -2,7 +2,9 @@
 
 mod error;
 mod falloff;
+mod field_path;
 mod file;
+pub mod limits;
 mod material;
 mod model;
 mod object;
@@ -10,8 +12,10 @@ mod validate;
 
 pub use error::SceneError;
 pub use falloff::Falloff;
+pub use field_path::{FieldPath, PathSegment};
 pub use file::{DEFAULT_SCENE_TOML, default_scene, from_toml_str, load, save, to_toml_string};
+pub use limits::{CountLimits, Limits, MAX_DEPTH};
 pub use material::Material;
 pub use model::{Camera, Light, Scene};
 pub use object::{Object, Shape, ShapeKind};
-pub use validate::{FieldPath, Invalid, MAX_DEPTH, validate};
+pub use validate::{Components, Invalid, Problem, validate};
