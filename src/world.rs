@@ -8,7 +8,7 @@ use std::time::SystemTime;
 
 use rayon::prelude::*;
 
-use crate::mesh::{Mesh, ObjModel, Sphere, load_obj, tessellate};
+use crate::mesh::{Mesh, ObjError, ObjModel, Sphere, load_obj, tessellate};
 use crate::scene::{Falloff, Light, Material, Scene, SceneError, Shape};
 
 /// Most triangles a world may hold (about 2 GB of vertex data).
@@ -50,7 +50,7 @@ pub struct ObjCache {
 
 impl ObjCache {
     /// The model at `path`, from the cache when the file is unchanged.
-    pub fn get(&mut self, path: &Path) -> Result<Arc<ObjModel>, String> {
+    pub fn get(&mut self, path: &Path) -> Result<Arc<ObjModel>, ObjError> {
         let modified = std::fs::metadata(path).and_then(|m| m.modified()).ok();
         if let Some((when, model)) = self.models.get(path)
             && *when == modified
@@ -82,11 +82,9 @@ impl World {
             models.push(match &object.shape {
                 Shape::Mesh { path, .. } => {
                     let full = base_dir.join(path);
-                    let model = cache.get(&full).map_err(|message| SceneError::Obj {
-                        index,
-                        obj: full.clone(),
-                        message,
-                    })?;
+                    let model = cache
+                        .get(&full)
+                        .map_err(|error| SceneError::Obj { index, error })?;
                     Some(model)
                 }
                 _ => None,

@@ -191,7 +191,12 @@ fn missing_and_malformed_obj_files_name_the_file() {
     let text = format!("{CAMERA}[[object]]\ntype = \"mesh\"\npath = \"broken.obj\"\n");
     let scene = from_toml_str(&text, Path::new("s.toml")).expect("parses");
     let error = rastray::World::build(&scene, dir.path()).expect_err("malformed OBJ");
-    assert!(error.to_string().contains("broken.obj"), "{error}");
+    let message = error.to_string();
+    assert!(
+        message.contains("broken.obj:3: cannot load the OBJ model of object[0]")
+            && message.contains("names vertex 9"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -242,6 +247,24 @@ fn out_of_range_messages_state_the_accepted_range() {
         };
         assert!(m.contains(&error.path.to_string()), "{m}");
     }
+}
+
+#[test]
+fn a_key_of_another_shape_is_a_typed_error() {
+    use rastray::scene::{ObjectError, ShapeKind};
+    let stray = ObjectError::Stray {
+        key: "radius",
+        kind: ShapeKind::Box,
+    };
+    let (error, m) = refused("[[object]]\ntype = \"box\"\nsize = [1.0, 1.0, 1.0]\nradius = 2.0\n");
+    assert!(matches!(error, SceneError::Parse { .. }), "{m}");
+    assert!(m.contains(&stray.to_string()), "{m}");
+    let missing = ObjectError::Missing {
+        key: "size",
+        kind: ShapeKind::Prism,
+    };
+    let (_, m) = refused("[[object]]\ntype = \"prism\"\n");
+    assert!(m.contains(&missing.to_string()), "{m}");
 }
 
 #[test]

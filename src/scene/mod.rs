@@ -17,5 +17,5 @@ pub use file::{DEFAULT_SCENE_TOML, default_scene, from_toml_str, load, save, to_
 pub use limits::{CountLimits, Limits, MAX_DEPTH};
 pub use material::Material;
 pub use model::{Camera, Light, Scene};
-pub use object::{Object, Shape, ShapeKind};
+pub use object::{Object, ObjectError, Shape, ShapeKind};
 pub use validate::{Components, Invalid, Problem, validate};
