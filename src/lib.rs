@@ -12,8 +12,10 @@ pub mod mesh;
 pub mod render;
 pub mod scene;
 pub mod tui;
+pub mod warnings;
 pub mod world;
 
 pub use render::{Algorithm, Frame, RenderOptions, render, render_into};
 pub use scene::Scene;
+pub use warnings::{Warning, warnings};
 pub use world::World;

@@ -7,6 +7,7 @@ use rastray::World;
 pub fn run(path: &Path) -> anyhow::Result<()> {
     let (scene, base) = super::load_scene(Some(path))?;
     let world = World::build(&scene, &base)?;
+    super::print_warnings(&scene, &world);
     println!("{}", path.display());
     let c = &scene.camera;
     println!(

@@ -66,6 +66,13 @@ pub fn load_scene(path: Option<&Path>) -> anyhow::Result<(Scene, PathBuf)> {
     }
 }
 
+/// Prints the scene's warnings on stderr, one `warning: …` line each.
+pub fn print_warnings(scene: &Scene, world: &rastray::World) {
+    for warning in rastray::warnings(scene, &scene.camera, world) {
+        eprintln!("warning: {warning}");
+    }
+}
+
 /// Parses WIDTHxHEIGHT for clap.
 pub fn parse_size(s: &str) -> Result<Size, String> {
     s.parse::<Size>().map_err(|e| e.to_string())

@@ -48,9 +48,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     };
     options.check()?;
     let world = World::build(&scene, &base)?;
-    if world.lights.is_empty() {
-        eprintln!("warning: the scene has no lights; only ambient light will show");
-    }
+    super::print_warnings(&scene, &world);
     let progress = Progress::new();
     let started = Instant::now();
     let (frame, elapsed) = std::thread::scope(|s| {
