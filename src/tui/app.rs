@@ -8,6 +8,7 @@ use super::export_job::ExportJob;
 use super::preview::{ColorMode, PreviewImage};
 use crate::render::Algorithm;
 use crate::scene::{Camera, Scene};
+use crate::warnings::Warning;
 
 /// One entry of the scene list.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -231,6 +232,8 @@ pub struct App {
     pub compare_shots: [Option<Shot>; 3],
     /// Triangles in the last world built.
     pub triangles: Option<usize>,
+    /// Warnings of the last world built; the status line shows those it did not have before.
+    pub warnings: Vec<Warning>,
     /// Whether render times are shown (off for reproducible screen captures).
     pub show_timings: bool,
     /// Bumped on every change other than a camera move: the world must be rebuilt.
@@ -268,6 +271,7 @@ impl App {
             shot: None,
             compare_shots: [None, None, None],
             triangles: None,
+            warnings: Vec::new(),
             show_timings: true,
             generation: 0,
             export: None,

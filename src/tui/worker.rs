@@ -12,6 +12,7 @@ use crate::World;
 use crate::render::accel::SceneAccel;
 use crate::render::{Algorithm, Progress, RenderError, RenderOptions, render_prepared};
 use crate::scene::{Camera, Scene};
+use crate::warnings::{Warning, warnings};
 use crate::world::ObjCache;
 
 /// Where a rendered image goes.
@@ -68,13 +69,18 @@ pub enum RenderReply {
     },
     /// The world could not be built or the image not rendered.
     Failed { id: u64, message: String },
+    /// The warnings of a newly built world, sent before its first image; an empty list when
+    /// the world before had some and this one has none.
+    Warned { id: u64, warnings: Vec<Warning> },
 }
 
 impl RenderReply {
     /// The request this reply answers.
     pub fn id(&self) -> u64 {
         match self {
-            RenderReply::Shot { id, .. } | RenderReply::Failed { id, .. } => *id,
+            RenderReply::Shot { id, .. }
+            | RenderReply::Failed { id, .. }
+            | RenderReply::Warned { id, .. } => *id,
         }
     }
 }
@@ -127,6 +133,8 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
     let mut world: Option<(u64, Arc<World>)> = None;
     // The ray tracer's BVH of the current world, kept while only the camera moves.
     let mut accel: Option<(u64, SceneAccel)> = None;
+    // The warnings of the last world built.
+    let mut warned: Vec<Warning> = Vec::new();
     while let Ok(mut request) = rx.recv() {
         while let Ok(newer) = rx.try_recv() {
             request = newer;
@@ -139,6 +147,15 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
             Some((g, w)) if *g == generation => w.clone(),
             _ => match World::build_cached(&request.scene, &request.base_dir, &mut cache) {
                 Ok(w) => {
+                    let found = warnings(&request.scene, &request.wanted.camera, &w);
+                    // While there are none, and were none, only images are sent.
+                    if !(found.is_empty() && warned.is_empty()) {
+                        reply(RenderReply::Warned {
+                            id: request.id,
+                            warnings: found.clone(),
+                        });
+                    }
+                    warned = found;
                     let w = Arc::new(w);
                     world = Some((generation, w.clone()));
                     w
