@@ -225,7 +225,7 @@ fn out_of_range_messages_state_the_accepted_range() {
         ),
         (
             "[[object]]\ntype = \"box\"\nsize = [1.0, 0.0, 1.0]\n",
-            "`object[0].size` width, height and depth must each be greater than 0 and at most 1e6, got [1, 0, 1]",
+            "`object[0].size` width, height and depth must each be a positive finite number at most 1e6, got [1, 0, 1]",
         ),
         (
             "[[object]]\ntype = \"icosahedron\"\nradius = 1.0\nsubdivisions = 9\n",

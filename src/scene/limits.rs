@@ -150,6 +150,9 @@ impl fmt::Display for Limits {
         match (self.open_min, self.open_max) {
             (false, false) => write!(f, "between {min} and {max}{unit}"),
             (true, true) => write!(f, "between {min} and {max}{unit} (exclusive)"),
+            (true, false) if self.min == 0.0 => {
+                write!(f, "a positive finite number at most {max}{unit}")
+            }
             (true, false) => write!(f, "greater than {min} and at most {max}{unit}"),
             (false, true) => write!(f, "at least {min} and less than {max}{unit}"),
         }
