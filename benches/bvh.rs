@@ -10,14 +10,15 @@ use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;
 
+use std::sync::Arc;
+
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
-use rastray::render::accel::SceneAccel;
-use rastray::render::{Algorithm, Frame, Progress, RenderOptions, View, raytrace};
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::scene::{Camera, Light, Object, Shape};
 use rastray::{Scene, World};
 
-fn million_triangles() -> (Scene, World) {
+fn million_triangles() -> (Scene, Arc<World>) {
     let scene = Scene {
         camera: Camera {
             position: Vec3::new(0.0, 0.5, 3.5),
@@ -35,36 +36,36 @@ fn million_triangles() -> (Scene, World) {
     };
     let world = World::build(&scene, Path::new(".")).expect("a built-in scene builds");
     assert_eq!(world.triangle_count(), 1_310_720);
-    (scene, world)
+    (scene, Arc::new(world))
 }
 
 fn ray_tracer(c: &mut Criterion) {
     let (scene, world) = million_triangles();
     let mut group = c.benchmark_group("icosahedron k=8 (1.3M triangles)");
-    group.bench_function("bvh build", |b| {
-        b.iter(|| black_box(SceneAccel::build(&world)))
-    });
-    let accel = SceneAccel::build(&world);
     let primary = RenderOptions {
         shadows: false,
         max_depth: Some(0),
         ..RenderOptions::new(Algorithm::Ray, 1920, 1080)
     };
+    group.bench_function("bvh build", |b| {
+        b.iter(|| black_box(Renderer::new(primary).prepare(&world, &Progress::new())))
+    });
+    // One renderer for all the renders below: its BVH is built once, here.
+    let mut renderer = Renderer::new(primary);
+    renderer
+        .prepare(&world, &Progress::new())
+        .expect("not cancelled");
     let filling = Camera {
         position: Vec3::new(0.0, 0.0, 2.2),
         ..scene.camera
     };
+    let mut frame = Frame::default();
     for (name, camera) in [("a third", scene.camera), ("filling", filling)] {
-        let view = View::new(&camera, 1920, 1080);
-        let mut frame = Frame::default();
-        frame.reshape(1920, 1080);
         group.bench_function(format!("primary rays 1920x1080, sphere {name}"), |b| {
             b.iter(|| {
-                let progress = Progress::new();
-                let out = &mut frame.pixels;
-                black_box(raytrace::trace_into(
-                    &accel, &world, &view, &primary, &progress, out,
-                ))
+                let stats = renderer.render(&world, &camera, &Progress::new(), &mut frame);
+                black_box(&frame.pixels);
+                black_box(stats)
             })
         });
     }

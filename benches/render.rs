@@ -1,19 +1,21 @@
 //! Each algorithm on the default scene at preview size (200×100) and at 1920×1080, into a reused
-//! frame and into a new one.
+//! frame and into a new one. Every render is a one-off, by a new renderer: the ray tracer builds
+//! its BVH each time.
 
 use std::hint::black_box;
 use std::path::Path;
+use std::sync::Arc;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use rastray::render::{Algorithm, Frame, Progress, RenderOptions, render, render_into};
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::{Scene, World};
 
-fn default_scene() -> (Scene, World) {
+fn default_scene() -> (Scene, Arc<World>) {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
     let scene = rastray::scene::load(&dir.join("default.toml")).expect("scenes/default.toml loads");
     let world = World::build(&scene, &dir).expect("the default scene builds");
-    (scene, world)
+    (scene, Arc::new(world))
 }
 
 fn algorithms(c: &mut Criterion) {
@@ -24,22 +26,18 @@ fn algorithms(c: &mut Criterion) {
             let options = RenderOptions::new(algorithm, width, height);
             // A live preview renders into the frame it keeps; a one-off render gets a new frame
             // (at 1920x1080, 25 MB of fresh memory to fault in).
+            let render = |frame: &mut Frame| {
+                Renderer::new(options)
+                    .render(&world, &scene.camera, &Progress::new(), frame)
+                    .expect("render");
+                black_box(&frame.pixels);
+            };
             let mut frame = Frame::default();
             group.bench_function(format!("{} reused frame", algorithm.name()), |b| {
-                b.iter(|| {
-                    render_into(
-                        &world,
-                        &scene.camera,
-                        &options,
-                        &Progress::new(),
-                        &mut frame,
-                    )
-                    .expect("render");
-                    black_box(&frame.pixels);
-                })
+                b.iter(|| render(&mut frame))
             });
             group.bench_function(format!("{} new frame", algorithm.name()), |b| {
-                b.iter(|| black_box(render(&world, &scene.camera, &options, &Progress::new())))
+                b.iter(|| render(&mut Frame::default()))
             });
         }
         group.finish();

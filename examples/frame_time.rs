@@ -4,10 +4,11 @@
 //! time (a one-off render, which also faults in the fresh image's memory).
 
 use std::path::Path;
+use std::sync::Arc;
 use std::time::Instant;
 
-use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Size};
-use rastray::{World, render, render_into};
+use rastray::World;
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer, Size};
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -29,27 +30,25 @@ fn main() -> anyhow::Result<()> {
     let reps: usize = args.get(3).map(|s| s.parse()).transpose()?.unwrap_or(20);
     let path = Path::new(scene_path);
     let scene = rastray::scene::load(path)?;
-    let world = World::build(&scene, path.parent().unwrap_or(Path::new(".")))?;
+    let world = Arc::new(World::build(
+        &scene,
+        path.parent().unwrap_or(Path::new(".")),
+    )?);
     println!(
         "{scene_path}: {} triangles at {size}",
         world.triangle_count()
     );
     for algorithm in algorithms {
         let options = RenderOptions::new(algorithm, size.width, size.height);
+        // Each render is a one-off, by a new renderer: the ray tracer builds its BVH each time.
+        let render = |frame: &mut Frame| {
+            Renderer::new(options)
+                .render(&world, &scene.camera, &Progress::new(), frame)
+                .expect("render");
+        };
         let mut frame = Frame::default();
-        let reused = time(reps, || {
-            render_into(
-                &world,
-                &scene.camera,
-                &options,
-                &Progress::new(),
-                &mut frame,
-            )
-            .expect("render");
-        });
-        let fresh = time(reps, || {
-            render(&world, &scene.camera, &options, &Progress::new()).expect("render");
-        });
+        let reused = time(reps, || render(&mut frame));
+        let fresh = time(reps, || render(&mut Frame::default()));
         println!("{algorithm:>8}: reused frame {reused}");
         println!("{:>8}  new frame    {fresh}", "");
     }

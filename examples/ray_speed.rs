@@ -8,12 +8,11 @@
 //! is what the same run takes on otherwise idle cores.
 
 use std::path::Path;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use rastray::World;
-use rastray::render::accel::SceneAccel;
-use rastray::render::raytrace::{RayStats, render_with_stats};
-use rastray::render::{Algorithm, Progress, RenderOptions, View};
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, RenderStats, Renderer};
 use rastray::scene::{Scene, from_toml_str};
 
 const RUNS: usize = 3;
@@ -97,20 +96,29 @@ fn best<T>(mut run: impl FnMut() -> T) -> (Timing, T) {
         .expect("at least one run")
 }
 
-/// Best render time and ray counts of `scene` at 1920×1080.
-fn trace(scene: &Scene, shadows: bool, max_depth: Option<u32>) -> (Timing, RayStats, SceneAccel) {
-    let world = World::build(scene, Path::new(".")).expect("world");
-    let accel = SceneAccel::build(&world);
-    let mut options = RenderOptions::new(Algorithm::Ray, 1920, 1080);
-    options.shadows = shadows;
-    options.max_depth = max_depth;
-    let view = View::new(&scene.camera, 1920, 1080);
-    let (time, stats) = best(|| {
-        let (_, stats) = render_with_stats(&accel, &world, &view, &options, &Progress::new())
-            .expect("no cancel");
-        stats
-    });
-    (time, stats, accel)
+/// The world of `scene`.
+fn world(scene: &Scene) -> Arc<World> {
+    Arc::new(World::build(scene, Path::new(".")).expect("world"))
+}
+
+/// Best render time and figures of `scene` at 1920×1080, its BVH built beforehand.
+fn trace(scene: &Scene, shadows: bool, max_depth: Option<u32>) -> (Timing, RenderStats) {
+    let world = world(scene);
+    let options = RenderOptions {
+        shadows,
+        max_depth,
+        ..RenderOptions::new(Algorithm::Ray, 1920, 1080)
+    };
+    let mut renderer = Renderer::new(options);
+    renderer
+        .prepare(&world, &Progress::new())
+        .expect("no cancel");
+    let mut frame = Frame::default();
+    best(|| {
+        renderer
+            .render(&world, &scene.camera, &Progress::new(), &mut frame)
+            .expect("no cancel")
+    })
 }
 
 fn main() {
@@ -130,50 +138,49 @@ fn main() {
 }
 
 fn build(big: &Scene) {
-    let world = World::build(big, Path::new(".")).expect("world");
-    let (build, accel) = best(|| SceneAccel::build(&world));
-    let bvh = &accel.objects[0].bvh;
+    let world = world(big);
+    let options = RenderOptions::new(Algorithm::Ray, 1920, 1080);
+    let (build, _) = best(|| Renderer::new(options).prepare(&world, &Progress::new()));
     println!(
-        "BVH build, {} triangles: {} ({} inner nodes, depth {})",
+        "BVH build, {} triangles: {}",
         world.triangle_count(),
-        build.ms(),
-        bvh.inner.len(),
-        bvh.depth
+        build.ms()
     );
 }
 
 fn primary(big: &Scene, scaling: bool) {
-    let (t_big, stats, accel) = trace(big, false, Some(0));
+    let (t_big, stats) = trace(big, false, Some(0));
     println!(
         "primary rays, {} triangles, 1920x1080: {}; {:.2} M rays/s",
-        accel.triangle_count(),
+        stats.triangles,
         t_big.ms(),
-        stats.primary as f64 / t_big.idle_secs() / 1e6
+        stats.rays.primary as f64 / t_big.idle_secs() / 1e6
     );
     if !scaling {
         return;
     }
     let small = sphere_scene(3);
-    let (t_small, stats_small, accel_small) = trace(&small, false, Some(0));
+    let (t_small, stats_small) = trace(&small, false, Some(0));
     println!(
         "primary rays, {} triangles, 1920x1080: {}; {:.2} M rays/s; ratio {:.2}x",
-        accel_small.triangle_count(),
+        stats_small.triangles,
         t_small.ms(),
-        stats_small.primary as f64 / t_small.idle_secs() / 1e6,
+        stats_small.rays.primary as f64 / t_small.idle_secs() / 1e6,
         t_big.idle_secs() / t_small.idle_secs()
     );
 }
 
 fn default_scene() {
     let default = rastray::scene::default_scene();
-    let (t, stats, _) = trace(&default, true, None);
+    let (t, stats) = trace(&default, true, None);
+    let rays = stats.rays;
     println!(
         "default scene, 1920x1080, shadows, depth {}: {}; rays: {} primary, {} shadow, {} reflection ({:.2} M rays/s)",
         default.max_depth,
         t.ms(),
-        stats.primary,
-        stats.shadow,
-        stats.reflection,
-        stats.total() as f64 / t.idle_secs() / 1e6
+        rays.primary,
+        rays.shadow,
+        rays.reflection,
+        rays.total() as f64 / t.idle_secs() / 1e6
     );
 }

@@ -8,8 +8,8 @@ use std::time::SystemTime;
 
 use rayon::prelude::*;
 
-use crate::mesh::{Mesh, ObjError, ObjModel, Sphere, load_obj, tessellate};
-use crate::scene::{Falloff, Light, Material, Scene, SceneError, Shape};
+use crate::mesh::{Mesh, MeshFile, MeshFileError, Sphere, tessellate, tessellate_part};
+use crate::scene::{Falloff, Light, Material, Object, Scene, SceneError, SceneWarning, Shape};
 
 /// Most triangles a world may hold (about 2 GB of vertex data).
 pub const MAX_TRIANGLES: u64 = 20_000_000;
@@ -42,15 +42,15 @@ pub struct World {
     pub falloff: Option<Falloff>,
 }
 
-/// Loaded OBJ models keyed by absolute path, reloaded when the file changes on disk.
+/// Loaded model files (OBJ or glTF) keyed by path, reloaded when the file changes on disk.
 #[derive(Debug, Default)]
-pub struct ObjCache {
-    models: HashMap<PathBuf, (Option<SystemTime>, Arc<ObjModel>)>,
+pub struct MeshFileCache {
+    models: HashMap<PathBuf, (Option<SystemTime>, Arc<MeshFile>)>,
 }
 
-impl ObjCache {
+impl MeshFileCache {
     /// The model at `path`, from the cache when the file is unchanged.
-    pub fn get(&mut self, path: &Path) -> Result<Arc<ObjModel>, ObjError> {
+    pub fn get(&mut self, path: &Path) -> Result<Arc<MeshFile>, MeshFileError> {
         let modified = std::fs::metadata(path).and_then(|m| m.modified()).ok();
         if let Some((when, model)) = self.models.get(path)
             && *when == modified
@@ -58,33 +58,95 @@ impl ObjCache {
         {
             return Ok(model.clone());
         }
-        let model = Arc::new(load_obj(path)?);
+        let model = Arc::new(MeshFile::load(path)?);
         self.models
             .insert(path.to_path_buf(), (modified, model.clone()));
         Ok(model)
     }
 }
 
+/// Where a world object came from.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct WorldObjectSource {
+    /// Index of the scene object.
+    pub object: usize,
+    /// For one part of a multi-part model file (a glTF primitive), its label.
+    pub part: Option<String>,
+}
+
+/// A built world, with where each of its objects came from and what the model files held that
+/// rastray does not draw.
+#[derive(Debug, Clone)]
+pub struct WorldReport {
+    pub world: World,
+    /// One entry per world object, in the same order.
+    pub sources: Vec<WorldObjectSource>,
+    /// Skipped parts of model files, in scene order.
+    pub warnings: Vec<SceneWarning>,
+}
+
+/// The material one part of a mesh object is drawn with. A mesh object whose own material is
+/// the default one keeps the file's material (or the default, for a part that has none); any
+/// other material set on the object replaces the file's on every part.
+fn part_material(object: &Object, from_file: Option<Material>) -> Material {
+    if object.material == Material::default() {
+        from_file.unwrap_or(object.material)
+    } else {
+        object.material
+    }
+}
+
+fn world_object(mesh: Mesh, material: Material) -> WorldObject {
+    let bounds = mesh.bounding_sphere();
+    WorldObject {
+        mesh,
+        material,
+        bounds,
+    }
+}
+
 impl World {
-    /// Tessellates `scene`; OBJ paths are relative to `base_dir` (the scene file's directory).
+    /// Tessellates `scene`; model paths are relative to `base_dir` (the scene file's directory).
     pub fn build(scene: &Scene, base_dir: &Path) -> Result<World, SceneError> {
-        World::build_cached(scene, base_dir, &mut ObjCache::default())
+        World::build_cached(scene, base_dir, &mut MeshFileCache::default())
     }
 
     /// As [`World::build`], reusing models already in `cache`.
     pub fn build_cached(
         scene: &Scene,
         base_dir: &Path,
-        cache: &mut ObjCache,
+        cache: &mut MeshFileCache,
     ) -> Result<World, SceneError> {
+        World::build_report(scene, base_dir, cache).map(|report| report.world)
+    }
+
+    /// As [`World::build_cached`], also telling where each world object came from (a glTF model
+    /// becomes one world object per primitive, each with its own material) and what the model
+    /// files held that rastray skipped.
+    pub fn build_report(
+        scene: &Scene,
+        base_dir: &Path,
+        cache: &mut MeshFileCache,
+    ) -> Result<WorldReport, SceneError> {
         let mut models = Vec::with_capacity(scene.objects.len());
+        let mut warnings = Vec::new();
         for (index, object) in scene.objects.iter().enumerate() {
             models.push(match &object.shape {
                 Shape::Mesh { path, .. } => {
                     let full = base_dir.join(path);
-                    let model = cache
-                        .get(&full)
-                        .map_err(|error| SceneError::Obj { index, error })?;
+                    let model = cache.get(&full).map_err(|error| match error {
+                        MeshFileError::Obj(error) => SceneError::Obj { index, error },
+                        MeshFileError::Gltf(error) => SceneError::Gltf {
+                            index,
+                            path: full.clone(),
+                            error,
+                        },
+                    })?;
+                    warnings.extend(model.warnings().iter().map(|warning| SceneWarning {
+                        index,
+                        path: full.clone(),
+                        warning: warning.clone(),
+                    }));
                     Some(model)
                 }
                 _ => None,
@@ -98,7 +160,7 @@ impl World {
                 (Shape::Icosahedron { subdivisions, .. }, _) => 20 * 4u64.pow(*subdivisions),
                 (Shape::Box { segments, .. }, _) => 12 * (*segments as u64).pow(2),
                 (Shape::Prism { segments, .. }, _) => 8 * (*segments as u64).pow(2),
-                (Shape::Mesh { .. }, Some(model)) => model.triangles.len() as u64,
+                (Shape::Mesh { .. }, Some(model)) => model.triangle_count() as u64,
                 (Shape::Mesh { .. }, None) => 0,
             })
             .sum();
@@ -108,27 +170,58 @@ impl World {
                 limit: MAX_TRIANGLES,
             });
         }
-        let objects = scene
+        let built: Vec<Vec<(WorldObject, WorldObjectSource)>> = scene
             .objects
             .par_iter()
             .zip(models.par_iter())
-            .map(|(object, model)| {
-                let mesh = tessellate(object, model.as_deref());
-                let bounds = mesh.bounding_sphere();
-                WorldObject {
-                    mesh,
-                    material: object.material,
-                    bounds,
+            .enumerate()
+            .map(|(index, (object, model))| match model.as_deref() {
+                Some(MeshFile::Gltf(model)) => {
+                    let (lo, hi) = model.bounds();
+                    let centre = (lo + hi) * 0.5;
+                    model
+                        .parts
+                        .par_iter()
+                        .map(|part| {
+                            let mesh = tessellate_part(object, &part.geometry, centre);
+                            (
+                                world_object(mesh, part_material(object, part.material)),
+                                WorldObjectSource {
+                                    object: index,
+                                    part: Some(part.label.clone()),
+                                },
+                            )
+                        })
+                        .collect()
                 }
+                Some(MeshFile::Obj(geometry)) => vec![(
+                    world_object(tessellate(object, Some(geometry)), object.material),
+                    WorldObjectSource {
+                        object: index,
+                        part: None,
+                    },
+                )],
+                None => vec![(
+                    world_object(tessellate(object, None), object.material),
+                    WorldObjectSource {
+                        object: index,
+                        part: None,
+                    },
+                )],
             })
             .collect();
-        Ok(World {
-            objects,
-            lights: scene.lights.clone(),
-            ambient: scene.ambient,
-            background: scene.background,
-            max_depth: scene.max_depth,
-            falloff: scene.falloff,
+        let (objects, sources) = built.into_iter().flatten().unzip();
+        Ok(WorldReport {
+            world: World {
+                objects,
+                lights: scene.lights.clone(),
+                ambient: scene.ambient,
+                background: scene.background,
+                max_depth: scene.max_depth,
+                falloff: scene.falloff,
+            },
+            sources,
+            warnings,
         })
     }
 

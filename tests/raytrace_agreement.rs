@@ -3,25 +3,30 @@
 //! each pixel centre. Their 8-bit sRGB images must agree to a PSNR of at least 40 dB.
 
 use std::path::Path;
+use std::sync::Arc;
 
-use rastray::render::{Algorithm, Frame, Progress, RenderOptions, render};
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::{Scene, World};
 
 /// Least acceptable peak signal-to-noise ratio, dB.
 const MIN_PSNR: f64 = 40.0;
 
-fn load(path: &str) -> (Scene, World) {
+fn load(path: &str) -> (Scene, Arc<World>) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
     let scene = rastray::scene::load(&path).expect("scene loads");
     let world = World::build(&scene, path.parent().expect("a directory")).expect("world");
-    (scene, world)
+    (scene, Arc::new(world))
 }
 
-fn frame(scene: &Scene, world: &World, algorithm: Algorithm) -> Frame {
+fn frame(scene: &Scene, world: &Arc<World>, algorithm: Algorithm) -> Frame {
     let mut options = RenderOptions::new(algorithm, 480, 270);
     options.shadows = false;
     options.max_depth = Some(0);
-    render(world, &scene.camera, &options, &Progress::new()).expect("render")
+    let mut frame = Frame::default();
+    Renderer::new(options)
+        .render(world, &scene.camera, &Progress::new(), &mut frame)
+        .expect("render");
+    frame
 }
 
 /// PSNR in dB of two 8-bit images of the same size (infinite when identical).
@@ -66,4 +71,9 @@ fn default_scene_agrees_with_phong() {
 #[test]
 fn teapot_obj_scene_agrees_with_phong() {
     check("scenes/teapot.toml");
+}
+
+#[test]
+fn suzanne_gltf_scene_agrees_with_phong() {
+    check("scenes/suzanne.toml");
 }

@@ -1,26 +1,49 @@
 //! What only the ray tracer shows (shadows and mirror reflections), and how it runs: the same
 //! bytes on any number of threads, cancellation, and ray counts.
 
+use std::num::NonZeroUsize;
 use std::path::Path;
+use std::sync::Arc;
 
 use glam::Vec3;
 use rastray::World;
-use rastray::render::accel::SceneAccel;
-use rastray::render::raytrace::render_with_stats;
-use rastray::render::{Algorithm, Frame, Progress, RenderOptions, View, render};
+use rastray::render::{
+    Algorithm, Cancelled, Frame, Progress, RayCounts, RenderError, RenderOptions, Renderer, View,
+};
 use rastray::scene::{Scene, from_toml_str};
 
-fn scene(text: &str) -> (Scene, World) {
+fn scene(text: &str) -> (Scene, Arc<World>) {
     let scene = from_toml_str(text, Path::new("test.toml")).expect("valid scene");
     let world = World::build(&scene, Path::new(".")).expect("world");
-    (scene, world)
+    (scene, Arc::new(world))
 }
 
-fn ray_frame(scene: &Scene, world: &World, size: (u32, u32), shadows: bool, depth: u32) -> Frame {
-    let mut options = RenderOptions::new(Algorithm::Ray, size.0, size.1);
-    options.shadows = shadows;
-    options.max_depth = Some(depth);
-    render(world, &scene.camera, &options, &Progress::new()).expect("render")
+/// Renders with `options` into a new frame; the frame and the rays cast.
+fn render(scene: &Scene, world: &Arc<World>, options: RenderOptions) -> (Frame, RayCounts) {
+    let mut frame = Frame::default();
+    let stats = Renderer::new(options)
+        .render(world, &scene.camera, &Progress::new(), &mut frame)
+        .expect("render");
+    (frame, stats.rays)
+}
+
+/// The ray tracer's options at `size`, with or without shadows, reflecting to `depth`.
+fn ray_options(size: (u32, u32), shadows: bool, depth: u32) -> RenderOptions {
+    RenderOptions {
+        shadows,
+        max_depth: Some(depth),
+        ..RenderOptions::new(Algorithm::Ray, size.0, size.1)
+    }
+}
+
+fn ray_frame(
+    scene: &Scene,
+    world: &Arc<World>,
+    size: (u32, u32),
+    shadows: bool,
+    depth: u32,
+) -> Frame {
+    render(scene, world, ray_options(size, shadows, depth)).0
 }
 
 /// A clearly red 8-bit pixel.
@@ -126,13 +149,13 @@ fn box_shadows_the_floor_only_with_shadows_on() {
 fn same_bytes_on_one_and_two_threads() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/default.toml");
     let scene = rastray::scene::load(&path).expect("scene");
-    let world = World::build(&scene, path.parent().expect("dir")).expect("world");
+    let world = Arc::new(World::build(&scene, path.parent().expect("dir")).expect("world"));
     let render_on = |threads: usize| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .expect("pool")
-            .install(|| ray_frame(&scene, &world, (160, 90), true, 4))
+        let options = RenderOptions {
+            threads: NonZeroUsize::new(threads),
+            ..ray_options((160, 90), true, 4)
+        };
+        render(&scene, &world, options).0
     };
     let one = render_on(1);
     let two = render_on(2);
@@ -142,20 +165,14 @@ fn same_bytes_on_one_and_two_threads() {
 #[test]
 fn ray_counts_follow_the_options() {
     let (scene, world) = scene(SHADOW);
-    let accel = SceneAccel::build(&world);
-    let view = View::new(&scene.camera, 40, 30);
-    let mut options = RenderOptions::new(Algorithm::Ray, 40, 30);
-    options.shadows = false;
-    options.max_depth = Some(0);
-    let (_, stats) =
-        render_with_stats(&accel, &world, &view, &options, &Progress::new()).expect("render");
+    let mut options = ray_options((40, 30), false, 0);
+    let (_, stats) = render(&scene, &world, options);
     assert_eq!(
         (stats.primary, stats.shadow, stats.reflection),
         (1200, 0, 0)
     );
     options.shadows = true;
-    let (_, stats) =
-        render_with_stats(&accel, &world, &view, &options, &Progress::new()).expect("render");
+    let (_, stats) = render(&scene, &world, options);
     // One light: at most one shadow ray per primary ray, and some surface faces it.
     assert!(
         stats.shadow > 0 && stats.shadow <= stats.primary,
@@ -163,11 +180,8 @@ fn ray_counts_follow_the_options() {
     );
 
     let (scene, world) = self::scene(MIRROR);
-    let accel = SceneAccel::build(&world);
-    let view = View::new(&scene.camera, 40, 30);
     options.max_depth = Some(3);
-    let (_, stats) =
-        render_with_stats(&accel, &world, &view, &options, &Progress::new()).expect("render");
+    let (_, stats) = render(&scene, &world, options);
     // Every pixel sees the mirror, so every primary ray spawns at least one reflection.
     assert!(stats.reflection >= stats.primary, "{stats:?}");
 }
@@ -177,6 +191,7 @@ fn cancelled_render_stops_with_an_error() {
     let (scene, world) = scene(SHADOW);
     let progress = Progress::new();
     progress.cancel();
-    let options = RenderOptions::new(Algorithm::Ray, 64, 48);
-    assert!(render(&world, &scene.camera, &options, &progress).is_err());
+    let mut renderer = Renderer::new(RenderOptions::new(Algorithm::Ray, 64, 48));
+    let result = renderer.render(&world, &scene.camera, &progress, &mut Frame::default());
+    assert_eq!(result.map(|_| ()), Err(RenderError::Cancelled(Cancelled)));
 }

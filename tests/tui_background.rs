@@ -8,7 +8,8 @@ use std::time::Duration;
 use rastray::render::Algorithm;
 use rastray::scene::default_scene;
 use rastray::tui::action::Action;
-use rastray::tui::app::{App, Mode, Tone};
+use rastray::tui::app::{App, Tone};
+use rastray::tui::mode::Mode;
 use rastray::tui::update::apply;
 use rastray::tui::worker::{Job, RenderReply, Slot, Wanted, Worker};
 
@@ -125,7 +126,7 @@ fn export(app: &mut App, path: &str, size: &str, samples: &str) {
 
 fn wait_for_export(app: &mut App) {
     let start = std::time::Instant::now();
-    while app.export.is_some() {
+    while app.is_exporting() {
         assert!(start.elapsed() < PATIENCE, "the export thread ends");
         std::thread::sleep(Duration::from_millis(5));
         apply(app, Action::Tick);
@@ -139,18 +140,18 @@ fn export_writes_a_png_and_esc_cancels_one() {
 
     let small = dir.path().join("small.png");
     export(&mut app, small.to_str().unwrap(), "64x48", "2");
-    assert_eq!(app.mode, Mode::Normal);
+    assert_eq!(*app.mode(), Mode::Normal);
     wait_for_export(&mut app);
     let image = image::open(&small).expect("a PNG");
     assert_eq!((image.width(), image.height()), (64, 48));
-    assert_eq!(app.status.as_ref().unwrap().tone, Tone::Info);
+    assert_eq!(app.status().unwrap().tone, Tone::Info);
 
     let big = dir.path().join("big.png");
     export(&mut app, big.to_str().unwrap(), "1024x1024", "8");
-    assert!(app.export.is_some());
+    assert!(app.is_exporting());
     apply(&mut app, Action::Cancel);
     wait_for_export(&mut app);
-    let status = app.status.clone().unwrap();
+    let status = app.status().cloned().unwrap();
     assert_eq!(status.tone, Tone::Error, "{status:?}");
     assert!(status.text.contains("cancelled"), "{status:?}");
     assert!(!big.exists());
@@ -160,11 +161,11 @@ fn export_writes_a_png_and_esc_cancels_one() {
 fn a_bad_export_size_is_refused_in_the_dialog() {
     let mut app = App::new(default_scene(), None, PathBuf::from("."));
     export(&mut app, "x.png", "100000x5", "1");
-    match &app.mode {
+    match app.mode() {
         Mode::Export(form) => assert!(form.error.is_some()),
         other => panic!("the dialog stays open, got {other:?}"),
     }
-    assert!(app.export.is_none());
+    assert!(!app.is_exporting());
 }
 
 #[test]
@@ -176,11 +177,48 @@ fn typing_in_an_export_field_replaces_its_value() {
     }
     apply(&mut app, Action::Down);
     apply(&mut app, Action::Backspace);
-    match &app.mode {
+    match app.mode() {
         Mode::Export(form) => {
             assert_eq!(form.path, "a.png");
             assert_eq!(form.size, "1920x108", "Backspace edits the shown value");
         }
         other => panic!("the dialog is open, got {other:?}"),
     }
+}
+
+#[test]
+fn the_export_looks_through_the_view() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut app = App::new(default_scene(), None, PathBuf::from("."));
+    apply(
+        &mut app,
+        Action::Orbit {
+            yaw: 40.0,
+            pitch: 10.0,
+        },
+    );
+    let png = dir.path().join("view.png");
+    export(&mut app, png.to_str().unwrap(), "48x32", "1");
+    wait_for_export(&mut app);
+    let exported = image::open(&png).expect("a PNG").to_rgb8().into_raw();
+
+    // The same render as the preview's core call, from the view and from the scene's camera.
+    let scene = default_scene();
+    let world = Arc::new(rastray::World::build(&scene, std::path::Path::new(".")).unwrap());
+    let options = rastray::RenderOptions::new(app.view().algorithm(), 48, 32);
+    let from = |camera| {
+        let mut frame = rastray::render::Frame::default();
+        rastray::render::Renderer::new(options)
+            .render(
+                &world,
+                &camera,
+                &rastray::render::Progress::new(),
+                &mut frame,
+            )
+            .unwrap();
+        frame.to_srgb8()
+    };
+    assert_eq!(exported, from(app.view().camera()), "the view is exported");
+    assert_ne!(exported, from(scene.camera), "not the scene's camera");
+    assert!(!app.document().is_dirty());
 }

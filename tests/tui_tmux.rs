@@ -124,7 +124,7 @@ fn add_colour_ray_export_save_quit() {
 
     // Export a small PNG with the ray tracer.
     tmux.keys(&["e"]);
-    tmux.wait_for("Export PNG");
+    tmux.wait_for("┏ Export ━");
     tmux.keys(&["C-u"]);
     tmux.text("out.png");
     tmux.keys(&["Down", "C-u"]);

@@ -2,16 +2,19 @@
 //! preview's cell colours checked pixel by pixel (snapshots hold no colours).
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use glam::Vec3;
 use rastray::World;
-use rastray::render::{Algorithm, Frame, Progress, RenderOptions, render};
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::scene::default_scene;
 use rastray::tui::action::Action;
-use rastray::tui::app::{App, Focus, Shot};
+use rastray::tui::app::App;
 use rastray::tui::preview::{ColorMode, PreviewImage, halves_match, nearest_256};
+use rastray::tui::selection::{Focus, Item};
 use rastray::tui::update::apply;
 use rastray::tui::view::{Picture, layout};
+use rastray::tui::worker::{RenderReply, Slot};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
@@ -38,10 +41,7 @@ fn stripes(width: u32, height: u32) -> PreviewImage {
 }
 
 fn app() -> App {
-    let mut app = App::new(default_scene(), None, PathBuf::from("."));
-    app.show_timings = false;
-    app.triangles = Some(112);
-    app
+    App::new(default_scene(), None, PathBuf::from(".")).with_timings(false)
 }
 
 fn draw(app: &App, width: u16, height: u16) -> Terminal<TestBackend> {
@@ -61,19 +61,32 @@ fn screen_text(terminal: &Terminal<TestBackend>) -> String {
         .collect()
 }
 
+/// A frame of a 112-triangle world from the render worker, for `slot`.
+fn frame(slot: Slot, cells: Rect) -> Action {
+    Action::Rendered(Box::new(RenderReply::Shot {
+        id: 1,
+        slot,
+        image: stripes(cells.width as u32, 2 * cells.height as u32),
+        millis: 1.0,
+        triangles: 112,
+        last: true,
+    }))
+}
+
 /// Gives the app previews of the sizes its layout asks for.
 fn fill_previews(app: &mut App, width: u16, height: u16) {
     let areas = layout(Rect::new(0, 0, width, height), app).unwrap();
     let p = areas.picture;
-    app.shot = Some(Shot {
-        image: stripes(p.width as u32, 2 * p.height as u32),
-        millis: 1.0,
-    });
+    apply(app, frame(Slot::Main, p));
     for (i, (_, _, image)) in rastray::tui::view::compare_panes(p).into_iter().enumerate() {
-        app.compare_shots[i] = Some(Shot {
-            image: stripes(image.width as u32, 2 * image.height as u32),
-            millis: 1.0,
-        });
+        apply(app, frame(Slot::Compare(i), image));
+    }
+}
+
+/// Presses Tab until `focus` has the keys.
+fn focus(app: &mut App, focus: Focus) {
+    while app.focus() != focus {
+        apply(app, Action::FocusNext);
     }
 }
 
@@ -88,9 +101,13 @@ fn main_layout() {
 fn properties_of_an_object_while_typing_a_bad_value() {
     let mut app = app();
     fill_previews(&mut app, 100, 30);
-    app.selected = app.index_of(rastray::tui::app::Item::Object(1));
-    app.focus = Focus::Properties;
-    app.field = 4; // radius
+    while app.item() != Item::Object(1) {
+        apply(&mut app, Action::Down);
+    }
+    focus(&mut app, Focus::Properties);
+    for _ in 0..4 {
+        apply(&mut app, Action::Down); // to the radius
+    }
     for a in [
         Action::Edit,
         Action::ClearInput,
@@ -125,7 +142,7 @@ fn compare_view() {
     let mut app = app();
     apply(&mut app, Action::ToggleCompare);
     fill_previews(&mut app, 100, 30);
-    app.focus = Focus::Preview;
+    focus(&mut app, Focus::Preview);
     insta::assert_snapshot!(draw(&app, 100, 30).backend());
 }
 
@@ -156,8 +173,9 @@ fn a_tiny_terminal_says_so_without_panicking() {
 
 #[test]
 fn control_characters_in_names_are_not_drawn() {
-    let mut app = app();
-    app.scene.objects[0].name = Some("evil\x1b[2Jname\x07".into());
+    let mut scene = default_scene();
+    scene.objects[0].name = Some("evil\x1b[2Jname\x07".into());
+    let app = App::new(scene, None, PathBuf::from("."));
     let text = screen_text(&draw(&app, 100, 30));
     assert!(text.contains("evil[2Jname"));
     assert!(!text.contains('\x1b') && !text.contains('\x07'));
@@ -165,24 +183,52 @@ fn control_characters_in_names_are_not_drawn() {
 
 /// Draws `image` into a buffer the size of its cells.
 fn cells(image: &PreviewImage, mode: ColorMode) -> Buffer {
+    cells_coarse(image, mode, &None)
+}
+
+/// Draws `image` with the pixels flagged in `coarse` in the 256-colour palette.
+fn cells_coarse(image: &PreviewImage, mode: ColorMode, coarse: &Option<Vec<bool>>) -> Buffer {
     let area = Rect::new(0, 0, image.width as u16, image.height.div_ceil(2) as u16);
     let mut buf = Buffer::empty(area);
-    Picture { image, mode }.render(area, &mut buf);
+    Picture {
+        image,
+        mode,
+        coarse,
+    }
+    .render(area, &mut buf);
     buf
+}
+
+#[test]
+fn a_motion_frame_draws_only_the_flagged_pixels_in_the_palette() {
+    // Two cells: the left one's upper pixel is flagged, the right one is not.
+    let image = PreviewImage {
+        width: 2,
+        height: 2,
+        pixels: vec![[200, 40, 40], [12, 13, 20], [10, 200, 30], [240, 240, 10]],
+    };
+    let coarse = Some(vec![true, false, false, false]);
+    let buf = cells_coarse(&image, ColorMode::Truecolor, &coarse);
+    let left = &buf[(0, 0)];
+    assert_eq!(left.symbol(), "▀");
+    assert_eq!(left.fg, Color::Indexed(nearest_256([200, 40, 40])));
+    assert_eq!(left.bg, Color::Rgb(10, 200, 30));
+    let right = &buf[(1, 0)];
+    assert_eq!(
+        (right.fg, right.bg),
+        (Color::Rgb(12, 13, 20), Color::Rgb(240, 240, 10))
+    );
 }
 
 #[test]
 fn upper_and_lower_halves_carry_their_pixels() {
     // A real render of the default scene, so the check covers the path the editor uses.
     let scene = default_scene();
-    let world = World::build(&scene, std::path::Path::new(".")).unwrap();
-    let frame = render(
-        &world,
-        &scene.camera,
-        &RenderOptions::new(Algorithm::Phong, 48, 32),
-        &Progress::new(),
-    )
-    .unwrap();
+    let world = Arc::new(World::build(&scene, std::path::Path::new(".")).unwrap());
+    let mut frame = Frame::default();
+    Renderer::new(RenderOptions::new(Algorithm::Phong, 48, 32))
+        .render(&world, &scene.camera, &Progress::new(), &mut frame)
+        .unwrap();
     let image = PreviewImage::from_frame(&frame);
     let buf = cells(&image, ColorMode::Truecolor);
     let rgb = |p: [u8; 3]| Color::Rgb(p[0], p[1], p[2]);
@@ -253,4 +299,52 @@ fn palette_picks_greys_for_greys() {
     assert_eq!(nearest_256([128, 128, 128]), 244); // grey ramp: 8 + 10·12 = 128
     assert_eq!(nearest_256([0, 0, 255]), 21);
     assert_eq!(nearest_256([95, 135, 175]), 16 + 36 + 12 + 3);
+}
+
+#[test]
+fn the_help_shows_every_row_of_the_key_table_whole() {
+    let mut app = app();
+    fill_previews(&mut app, 110, 36);
+    apply(&mut app, Action::Help);
+    let mut screens = String::new();
+    for _ in 0..rastray::tui::keys::KEYS.len() {
+        let terminal = draw(&app, 110, 36);
+        let buffer = terminal.backend().buffer();
+        for y in 0..36 {
+            let line: String = (0..110).map(|x| buffer[(x, y)].symbol()).collect();
+            screens.push_str(&line);
+            screens.push('\n');
+        }
+        apply(&mut app, Action::Down);
+    }
+    for row in rastray::tui::keys::KEYS {
+        let line = format!("{} ", row.keys());
+        assert!(
+            screens
+                .lines()
+                .any(|l| l.contains(&line) && l.contains(row.what)),
+            "`{}` | {} is not shown whole",
+            row.keys(),
+            row.what
+        );
+    }
+}
+
+#[test]
+fn the_preview_says_when_the_view_left_the_scene_camera() {
+    let mut app = app();
+    fill_previews(&mut app, 100, 30);
+    let title = |app: &App| screen_text(&draw(app, 100, 30));
+    assert!(!title(&app).contains("view moved"));
+    apply(
+        &mut app,
+        Action::Orbit {
+            yaw: 5.0,
+            pitch: 0.0,
+        },
+    );
+    assert!(title(&app).contains("Preview · Phong · view moved, C keeps it"));
+    apply(&mut app, Action::SceneCameraFromView);
+    assert!(!title(&app).contains("view moved"));
+    assert!(title(&app).contains("● modified"));
 }

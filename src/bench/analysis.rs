@@ -2,7 +2,7 @@
 //! ours with a verdict on each.
 
 use super::experiments::{Experiment, REFERENCE_PIXELS};
-use super::runner::Measurement;
+use super::measurement::Measurement;
 use crate::render::{Algorithm, Size};
 
 /// A measured value agrees with the study's when it is within this factor of it, either way; a

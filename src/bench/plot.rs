@@ -9,8 +9,9 @@ use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
 use super::analysis::series;
+use super::error::BenchError;
 use super::experiments::Experiment;
-use super::runner::{BenchError, Measurement};
+use super::measurement::Measurement;
 use crate::atomic_file::write_atomically;
 use crate::render::{Algorithm, Size};
 

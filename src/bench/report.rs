@@ -5,9 +5,11 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use super::analysis::{AGREEMENT_FACTOR, claims, compare, series};
+use super::error::BenchError;
 use super::experiments::Experiment;
+use super::format::number;
+use super::measurement::{BenchConfig, Measurement};
 use super::plot::{AREA_PLOT, FACES_PLOT};
-use super::runner::{BenchConfig, BenchError, Measurement};
 use crate::atomic_file::write_atomically;
 use crate::render::Algorithm;
 
@@ -177,21 +179,4 @@ fn table(results: &[Measurement], experiment: Experiment) -> String {
         md.push('\n');
     }
     md
-}
-
-/// A non-negative measurement (milliseconds, rates) with about three significant digits;
-/// values under 0.01 in scientific notation.
-pub fn number(value: f64) -> String {
-    let decimals = if value >= 100.0 {
-        0
-    } else if value >= 10.0 {
-        1
-    } else if value >= 1.0 {
-        2
-    } else if value >= 0.01 || value == 0.0 {
-        3
-    } else {
-        return format!("{value:.2e}");
-    };
-    format!("{value:.decimals$}")
 }

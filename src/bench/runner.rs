@@ -2,71 +2,28 @@
 //! times a render `reps` times for each algorithm, the three taking turns, and keeps the median,
 //! minimum and maximum.
 //!
-//! Only the render call is timed, into a frame each algorithm keeps from render to render. For the
-//! ray tracer that call includes building its BVH; for the Z-buffer it includes the vertex stage,
-//! rasterization and shading. Tessellating the scene into a world happens before and is not
-//! timed.
+//! Only the render is timed (its [`RenderStats::total`]), into a frame each algorithm keeps from
+//! render to render. Each timed render has a renderer of its own, as a one-off render does, so
+//! for the ray tracer it includes building its BVH; for the Z-buffer it includes the vertex
+//! stage, rasterization and shading. Tessellating the scene into a world happens before and is
+//! not timed.
 
 use std::path::Path;
-use std::time::{Duration, Instant};
+use std::sync::Arc;
+use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::area::{face_count, total_face_area};
+use super::error::BenchError;
 use super::experiments::{Experiment, Point, points};
-use super::report::number;
+use super::format::number;
+use super::measurement::{BenchConfig, Measurement};
 use crate::render::{
-    Algorithm, Frame, Progress, RenderError, RenderOptions, Size, View, render_into,
+    Algorithm, Frame, Progress, RenderError, RenderOptions, RenderStats, Renderer, View,
 };
-use crate::scene::{Camera, SceneError};
+use crate::scene::Camera;
 use crate::world::World;
-
-/// What one sweep run measures.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct BenchConfig {
-    /// Image size of every render.
-    pub size: Size,
-    /// Timed renders per point and algorithm, ≥ 1.
-    pub reps: u32,
-    /// Fewer points, for a first look and for CI.
-    pub quick: bool,
-}
-
-/// One algorithm on one scene: timing summary over the repetitions.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Measurement {
-    pub experiment: Experiment,
-    pub algorithm: Algorithm,
-    /// Triangles in the scene.
-    pub faces: usize,
-    /// Total projected face area, square pixels, overdraw included.
-    pub area_px: f64,
-    /// Median render time, milliseconds.
-    pub median_ms: f64,
-    /// Fastest render, milliseconds.
-    pub min_ms: f64,
-    /// Slowest render, milliseconds.
-    pub max_ms: f64,
-}
-
-/// Why a sweep stopped.
-#[derive(Debug, thiserror::Error)]
-pub enum BenchError {
-    #[error("building the benchmark scene: {0}")]
-    Scene(#[from] SceneError),
-    #[error("rendering the benchmark scene: {0}")]
-    Render(#[from] RenderError),
-    #[error("writing {path}: {source}")]
-    Write {
-        path: std::path::PathBuf,
-        source: std::io::Error,
-    },
-    #[error("drawing {path}: {message}")]
-    Plot {
-        path: std::path::PathBuf,
-        message: String,
-    },
-}
 
 /// Median, minimum and maximum of `samples` in milliseconds; the median of an even count is the
 /// mean of the two middle values. `samples` must not be empty.
@@ -82,21 +39,19 @@ pub fn summarize(samples: &[Duration]) -> (f64, f64, f64) {
     (median, ms[0], ms[n - 1])
 }
 
-/// The time of one render of `world` seen by `camera` with `options` into `frame`, whose buffer
-/// is reused from the previous render of the same size: the time is the render's, not that of
-/// faulting in a fresh image (about 8 ms for 1920×1080 on a virtual machine).
+/// One render of `world` seen by `camera` with `options`, by a renderer of its own (so the ray
+/// tracer builds its BVH, as in a one-off render), into `frame`, whose buffer is reused from
+/// the previous render of the same size: the time is the render's, not that of faulting in a
+/// fresh image (about 8 ms for 1920×1080 on a virtual machine).
 pub fn time_render(
-    world: &World,
+    world: &Arc<World>,
     camera: &Camera,
     options: &RenderOptions,
     frame: &mut Frame,
-) -> Result<Duration, RenderError> {
-    let progress = Progress::new();
-    let started = Instant::now();
-    render_into(world, camera, options, &progress, frame)?;
-    let elapsed = started.elapsed();
+) -> Result<RenderStats, RenderError> {
+    let stats = Renderer::new(*options).render(world, camera, &Progress::new(), frame)?;
     std::hint::black_box(&frame.pixels);
-    Ok(elapsed)
+    Ok(stats)
 }
 
 /// Runs both experiments for the three algorithms, reporting on `bar` (which may be hidden) and
@@ -119,7 +74,7 @@ pub fn run(config: &BenchConfig, bar: &ProgressBar) -> Result<Vec<Measurement>, 
     let mut frames = vec![Frame::default(); Algorithm::ALL.len()];
     for point in &sweeps {
         bar.set_message(format!("{} {}", point.experiment, point.label));
-        let world = World::build(&point.scene, Path::new("."))?;
+        let world = Arc::new(World::build(&point.scene, Path::new("."))?);
         let faces = face_count(&world);
         let view = View::new(&point.scene.camera, config.size.width, config.size.height);
         let area_px = total_face_area(&world, &view);
@@ -139,7 +94,8 @@ pub fn run(config: &BenchConfig, bar: &ProgressBar) -> Result<Vec<Measurement>, 
                 Algorithm::ALL.into_iter().zip(&mut times).zip(&mut frames)
             {
                 let options = RenderOptions::new(algorithm, config.size.width, config.size.height);
-                samples.push(time_render(&world, &point.scene.camera, &options, frame)?);
+                let stats = time_render(&world, &point.scene.camera, &options, frame)?;
+                samples.push(stats.total());
                 bar.inc(1);
             }
         }

@@ -2,52 +2,17 @@
 //! Mpixels/s per shading, ray tracer Mrays/s per kind of ray, and BVH build time.
 
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::sync::Arc;
+use std::time::Duration;
 
 use glam::Vec3;
 
 use super::area::total_face_area;
 use super::runner::{summarize, time_render};
 use crate::mesh::load_obj;
-use crate::render::accel::SceneAccel;
-use crate::render::{
-    Algorithm, Cancelled, Frame, Progress, RenderError, RenderOptions, Size, View, raytrace,
-};
+use crate::render::{Algorithm, Frame, RenderError, RenderOptions, RenderStats, Size, View};
 use crate::scene::{Camera, Light, Object, Scene, Shape};
 use crate::world::World;
-
-/// Rays a render cast, by kind, and the time it spent building its BVH.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct RayStats {
-    /// Camera rays, one per sample.
-    pub primary: u64,
-    /// Rays toward lights.
-    pub shadow: u64,
-    /// Mirror rays.
-    pub reflection: u64,
-    /// Time spent building the bounding volume hierarchy.
-    pub bvh_build: Duration,
-}
-
-/// Renders with the ray tracer into `frame` (its buffer reused when it has the view's size),
-/// building its BVH first, and returns the ray counts and the build time.
-pub fn render_ray_with_stats(
-    world: &World,
-    view: &View,
-    options: &RenderOptions,
-    progress: &Progress,
-    frame: &mut Frame,
-) -> Result<RayStats, Cancelled> {
-    let accel = SceneAccel::build(world);
-    frame.reshape(view.width, view.height);
-    let rays = raytrace::trace_into(&accel, world, view, options, progress, &mut frame.pixels)?;
-    Ok(RayStats {
-        primary: rays.primary,
-        shadow: rays.shadow,
-        reflection: rays.reflection,
-        bvh_build: accel.build_time,
-    })
-}
 
 /// One Z-buffer shading on one scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -55,7 +20,7 @@ pub struct RasterRate {
     pub algorithm: Algorithm,
     /// Median render time.
     pub time: Duration,
-    /// Triangles submitted.
+    /// Triangles drawn.
     pub triangles: usize,
     /// Image pixels.
     pub pixels: u64,
@@ -80,19 +45,22 @@ impl RasterRate {
     }
 }
 
-/// The ray tracer on one scene.
+/// The ray tracer on one scene: its median render, BVH build included.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RayRate {
-    /// Median render time, BVH build included.
-    pub time: Duration,
-    /// Counts of the median render.
-    pub stats: RayStats,
+    /// The median render's figures.
+    pub stats: RenderStats,
 }
 
 impl RayRate {
+    /// Render time, BVH build included.
+    pub fn time(&self) -> Duration {
+        self.stats.total()
+    }
+
     /// Tracing time: the render without the BVH build.
     pub fn trace_time(&self) -> Duration {
-        self.time.saturating_sub(self.stats.bvh_build)
+        self.stats.draw
     }
 
     /// Million rays per second of tracing time for `count` rays.
@@ -109,10 +77,11 @@ pub struct Throughput {
     pub ray: RayRate,
 }
 
-/// Measures `scene` (OBJ paths relative to `base`) at `size`, `reps` renders each (median kept).
+/// Measures `world`, built from `scene`, at `size`, `reps` renders each (median kept). Every
+/// render is a one-off: the ray tracer builds its BVH each time.
 pub fn measure(
     scene: &Scene,
-    world: &World,
+    world: &Arc<World>,
     size: Size,
     reps: u32,
 ) -> Result<Throughput, RenderError> {
@@ -122,32 +91,29 @@ pub fn measure(
     let mut frame = Frame::default();
     for algorithm in [Algorithm::Gouraud, Algorithm::Phong] {
         let options = RenderOptions::new(algorithm, size.width, size.height);
-        let times = (0..reps.max(1))
+        let runs = (0..reps.max(1))
             .map(|_| time_render(world, &scene.camera, &options, &mut frame))
             .collect::<Result<Vec<_>, _>>()?;
+        let times: Vec<Duration> = runs.iter().map(RenderStats::total).collect();
         let (median_ms, _, _) = summarize(&times);
         raster.push(RasterRate {
             algorithm,
             time: Duration::from_secs_f64(median_ms / 1e3),
-            triangles: world.triangle_count(),
+            triangles: runs[0].triangles,
             pixels: size.width as u64 * size.height as u64,
             face_area,
         });
     }
     let options = RenderOptions::new(Algorithm::Ray, size.width, size.height);
-    let mut runs = Vec::new();
-    for _ in 0..reps.max(1) {
-        let started = Instant::now();
-        let stats = render_ray_with_stats(world, &view, &options, &Progress::new(), &mut frame)?;
-        runs.push((started.elapsed(), stats));
-        std::hint::black_box(&frame.pixels);
-    }
-    runs.sort_by_key(|r| r.0);
-    let (time, stats) = runs[runs.len() / 2];
+    let mut runs = (0..reps.max(1))
+        .map(|_| time_render(world, &scene.camera, &options, &mut frame))
+        .collect::<Result<Vec<_>, _>>()?;
+    runs.sort_by_key(RenderStats::total);
+    let stats = runs[runs.len() / 2];
     Ok(Throughput {
         size,
         raster,
-        ray: RayRate { time, stats },
+        ray: RayRate { stats },
     })
 }
 

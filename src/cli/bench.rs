@@ -2,14 +2,15 @@
 //! Markdown report and two plots; `rastray bench throughput SCENE`: throughput on one scene.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use anyhow::Context;
 use clap::{Args, Subcommand};
 use indicatif::ProgressBar;
 use rastray::World;
-use rastray::bench::report::{CSV_FILE, REPORT_FILE, number};
+use rastray::bench::report::{CSV_FILE, REPORT_FILE};
 use rastray::bench::throughput::{measure, obj_scene};
-use rastray::bench::{BenchConfig, plot, report, run};
+use rastray::bench::{BenchConfig, number, plot, report, run};
 use rastray::render::Size;
 
 /// Timed renders per point by default, and in quick mode.
@@ -140,7 +141,7 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
     } else {
         super::load_scene(Some(&args.scene))?
     };
-    let world = World::build(&scene, &base)?;
+    let world = Arc::new(World::build(&scene, &base)?);
     let t = measure(&scene, &world, args.size, args.reps)?;
     println!(
         "{}: {} triangles at {}, median of {} render(s)",
@@ -164,15 +165,15 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
     println!(
         "{:8} {:>9} ms  BVH build {} ms, tracing {} ms",
         "Ray",
-        number(ray.time.as_secs_f64() * 1e3),
+        number(ray.time().as_secs_f64() * 1e3),
         number(s.bvh_build.as_secs_f64() * 1e3),
         number(ray.trace_time().as_secs_f64() * 1e3)
     );
     for (kind, count) in [
-        ("primary", s.primary),
-        ("shadow", s.shadow),
-        ("reflection", s.reflection),
-        ("all", s.primary + s.shadow + s.reflection),
+        ("primary", s.rays.primary),
+        ("shadow", s.rays.shadow),
+        ("reflection", s.rays.reflection),
+        ("all", s.rays.total()),
     ] {
         println!(
             "         {kind:10} {count:>12} rays  {:>8} Mrays/s",

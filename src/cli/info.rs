@@ -2,12 +2,13 @@
 
 use std::path::Path;
 
-use rastray::World;
+use rastray::world::WorldObject;
 
 pub fn run(path: &Path) -> anyhow::Result<()> {
     let (scene, base) = super::load_scene(Some(path))?;
-    let world = World::build(&scene, &base)?;
-    super::print_warnings(&scene, &world);
+    let report = super::build_world(&scene, &base)?;
+    let world = &report.world;
+    super::print_warnings(&scene, world);
     println!("{}", path.display());
     let c = &scene.camera;
     println!(
@@ -24,15 +25,34 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
         scene.max_depth
     );
     println!("objects  {}", scene.objects.len());
-    for (i, (object, built)) in scene.objects.iter().zip(&world.objects).enumerate() {
+    for (i, object) in scene.objects.iter().enumerate() {
+        // The world objects this scene object became: one, or one per glTF primitive.
+        let parts: Vec<(&WorldObject, Option<&str>)> = world
+            .objects
+            .iter()
+            .zip(&report.sources)
+            .filter(|(_, source)| source.object == i)
+            .map(|(built, source)| (built, source.part.as_deref()))
+            .collect();
+        let triangles: usize = parts.iter().map(|(b, _)| b.mesh.triangle_count()).sum();
+        let area: f32 = parts.iter().map(|(b, _)| b.mesh.surface_area()).sum();
         println!(
             "  [{i}] {:<12} {:<12} {:>9} triangles  area {:>10.3}  centre {}",
             object.label(),
             object.shape.kind().name(),
-            built.mesh.triangle_count(),
-            built.mesh.surface_area(),
+            triangles,
+            area,
             fmt_vec(object.shape.center())
         );
+        for (built, label) in &parts {
+            if let Some(label) = label {
+                println!(
+                    "        {label}: {} triangles  colour {}",
+                    built.mesh.triangle_count(),
+                    fmt_vec(built.material.color)
+                );
+            }
+        }
     }
     println!("lights   {}", scene.lights.len());
     for (i, light) in scene.lights.iter().enumerate() {

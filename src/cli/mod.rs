@@ -1,17 +1,22 @@
 //! Command-line arguments and dispatch. Every user error comes back as an `anyhow` error that
 //! names the file, line or field; `main` prints it and exits with code 2.
 
+mod algorithm_arg;
 mod bench;
+mod format_arg;
 mod info;
 mod render;
+mod view;
 
 use std::path::{Path, PathBuf};
+use std::process::ExitCode;
 
 use anyhow::Context;
-use clap::{Parser, Subcommand};
-use rastray::Scene;
+use clap::{Parser, Subcommand, ValueEnum};
 use rastray::render::Size;
 use rastray::tui::ColorMode;
+use rastray::world::{MeshFileCache, WorldReport};
+use rastray::{Scene, World};
 
 /// Build small 3D scenes in the terminal and render them with a Z-buffer (Gouraud or Phong) or a
 /// Whitted ray tracer.
@@ -22,15 +27,37 @@ pub struct Cli {
     pub command: Option<Command>,
     /// Scene file to open (the built-in default scene when absent).
     pub scene: Option<PathBuf>,
-    /// Colours of the terminal preview (default: truecolor when COLORTERM says so, else 256).
+    /// Colours of the terminal preview (default: truecolor when COLORTERM says so or the terminal
+    /// answers that it has it, else 256). Wins over detection and over NO_COLOR.
     #[arg(long, value_enum)]
-    pub color: Option<ColorMode>,
+    pub color: Option<ColorArg>,
+}
+
+/// The `--color` values, spelled as users type them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ColorArg {
+    /// 24-bit RGB escape sequences.
+    Truecolor,
+    /// The nearest entry of the xterm 256-colour palette.
+    #[value(name = "256")]
+    Ansi256,
+}
+
+impl From<ColorArg> for ColorMode {
+    fn from(arg: ColorArg) -> ColorMode {
+        match arg {
+            ColorArg::Truecolor => ColorMode::Truecolor,
+            ColorArg::Ansi256 => ColorMode::Ansi256,
+        }
+    }
 }
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Render a scene to a PNG file.
+    /// Render a scene to an image (PNG, OpenEXR) or a turntable (GIF, animated PNG).
     Render(render::RenderArgs),
+    /// Render a scene once and print it to the terminal: real pixels where it can show them.
+    View(view::ViewArgs),
     /// Print a scene's objects, triangle counts and bounds.
     Info {
         /// Scene file.
@@ -40,14 +67,34 @@ pub enum Command {
     Bench(bench::BenchArgs),
 }
 
-/// Runs the parsed command.
-pub fn run(cli: Cli) -> anyhow::Result<()> {
+/// Runs the parsed command; returns the process exit status (the editor's is 128 + the signal's
+/// number when a signal ended it).
+pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
-        Some(Command::Render(args)) => render::run(&args),
-        Some(Command::Info { scene }) => info::run(&scene),
-        Some(Command::Bench(args)) => bench::run_bench(&args),
-        None => rastray::tui::run(cli.scene, cli.color.unwrap_or_else(ColorMode::detect)),
+        Some(Command::Render(args)) => render::run(&args).map(|()| ExitCode::SUCCESS),
+        Some(Command::View(args)) => view::run(&args).map(|()| ExitCode::SUCCESS),
+        Some(Command::Info { scene }) => info::run(&scene).map(|()| ExitCode::SUCCESS),
+        Some(Command::Bench(args)) => bench::run_bench(&args).map(|()| ExitCode::SUCCESS),
+        None => {
+            refuse_dumb_terminal(std::env::var("TERM").ok().as_deref())?;
+            let color = cli.color.map_or_else(ColorMode::detect, ColorMode::from);
+            let exit = rastray::tui::run(cli.scene, color)?;
+            Ok(ExitCode::from(exit.code()))
+        }
     }
+}
+
+/// The editor moves the cursor and redraws the screen: a terminal that says it cannot
+/// (`TERM=dumb`) gets a message pointing to the commands that need none of that.
+fn refuse_dumb_terminal(term: Option<&str>) -> anyhow::Result<()> {
+    if term == Some("dumb") {
+        anyhow::bail!(
+            "the editor needs a terminal that can move the cursor (TERM is \"dumb\"); \
+             `rastray view SCENE` prints a picture, `rastray render SCENE -o OUT.png` writes one, \
+             `rastray info SCENE` lists a scene"
+        );
+    }
+    Ok(())
 }
 
 /// Loads the scene at `path`, or the built-in default scene; returns it with the directory its
@@ -73,7 +120,42 @@ pub fn print_warnings(scene: &Scene, world: &rastray::World) {
     }
 }
 
+/// Builds the world of `scene` (model paths relative to `base`), printing on stderr what its
+/// model files held that rastray skipped, one `warning:` line each.
+pub fn build_world(scene: &Scene, base: &Path) -> anyhow::Result<WorldReport> {
+    let report = World::build_report(scene, base, &mut MeshFileCache::default())?;
+    for warning in &report.warnings {
+        eprintln!("warning: {warning}");
+    }
+    Ok(report)
+}
+
 /// Parses WIDTHxHEIGHT for clap.
 pub fn parse_size(s: &str) -> Result<Size, String> {
     s.parse::<Size>().map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn color(args: &[&str]) -> Result<Option<ColorMode>, clap::Error> {
+        let cli = Cli::try_parse_from(std::iter::once("rastray").chain(args.iter().copied()))?;
+        Ok(cli.color.map(ColorMode::from))
+    }
+
+    #[test]
+    fn color_takes_the_documented_spellings() {
+        assert_eq!(
+            color(&["--color", "truecolor"]).unwrap(),
+            Some(ColorMode::Truecolor)
+        );
+        assert_eq!(
+            color(&["--color", "256"]).unwrap(),
+            Some(ColorMode::Ansi256)
+        );
+        assert_eq!(color(&["scene.toml"]).unwrap(), None);
+        let refused = color(&["--color", "ansi256"]).unwrap_err().to_string();
+        assert!(refused.contains("truecolor, 256"), "{refused}");
+    }
 }

@@ -2,7 +2,10 @@
 
 mod cuboid;
 mod face_list;
+mod geometry;
+pub mod gltf;
 mod icosahedron;
+mod mesh_file;
 mod normals;
 mod obj;
 mod obj_error;
@@ -12,10 +15,12 @@ mod tessellate;
 
 pub use cuboid::cuboid;
 pub use face_list::{Mesh, Sphere};
+pub use geometry::ModelGeometry;
 pub use icosahedron::icosahedron;
+pub use mesh_file::{MeshFile, MeshFileError};
 pub use normals::{CREASE_ANGLE_DEGREES, with_normals};
 pub use obj::{ObjModel, load_obj};
 pub use obj_error::{ObjError, ObjProblem};
 pub use patch::FaceList;
 pub use prism::prism;
-pub use tessellate::{object_transform, tessellate};
+pub use tessellate::{object_transform, tessellate, tessellate_part};

@@ -8,16 +8,10 @@ use tobj::LoadError;
 
 use super::obj_error::{ObjError, ObjProblem};
 
-/// A model as read from an OBJ file, before normals and placement.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ObjModel {
-    /// Welded vertex positions in the file's units.
-    pub positions: Vec<Vec3>,
-    /// Position indices of each triangle.
-    pub triangles: Vec<[u32; 3]>,
-    /// The file's unit normal for each triangle corner, when every face had normals.
-    pub corner_normals: Option<Vec<[Vec3; 3]>>,
-}
+use super::geometry::ModelGeometry;
+
+/// An OBJ file's geometry: every group of the file merged into one face list.
+pub type ObjModel = ModelGeometry;
 
 /// Reads the OBJ file at `path`. Errors name the file, and the line where there is one.
 pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
@@ -120,15 +114,6 @@ pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
     })
 }
 
-impl ObjModel {
-    /// Axis-aligned bounds (min, max) of the positions.
-    pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.positions.iter().fold(
-            (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
-            |(lo, hi), &p| (lo.min(p), hi.max(p)),
-        )
-    }
-}
 
 /// The OBJ text handed to tobj, counting how far tobj has read: when it refuses a statement,
 /// the statement is on the last line it consumed.

@@ -6,9 +6,9 @@ use glam::{Affine3A, EulerRot, Quat, Vec3};
 
 use super::cuboid::cuboid;
 use super::face_list::Mesh;
+use super::geometry::ModelGeometry;
 use super::icosahedron::icosahedron;
 use super::normals::with_normals;
-use super::obj::ObjModel;
 use super::prism::prism;
 use crate::scene::{Object, Shape};
 
@@ -24,7 +24,7 @@ pub fn object_transform(object: &Object) -> Affine3A {
 ///
 /// # Panics
 /// If `object` is a mesh and `obj` is `None` (a caller bug: the world loads models first).
-pub fn tessellate(object: &Object, obj: Option<&ObjModel>) -> Mesh {
+pub fn tessellate(object: &Object, obj: Option<&ModelGeometry>) -> Mesh {
     let transform = object_transform(object);
     let local = match &object.shape {
         Shape::Icosahedron {
@@ -43,22 +43,36 @@ pub fn tessellate(object: &Object, obj: Option<&ObjModel>) -> Mesh {
             let f = prism(*size, *segments);
             with_normals(&f.positions, &f.triangles, object.smooth)
         }
-        Shape::Mesh { scale, .. } => {
+        Shape::Mesh { .. } => {
             let model = obj.expect("mesh objects are tessellated with their OBJ model");
             let (lo, hi) = model.bounds();
-            let centre = (lo + hi) * 0.5;
-            let positions: Vec<Vec3> = model
-                .positions
-                .iter()
-                .map(|&p| (p - centre) * *scale)
-                .collect();
-            match (&model.corner_normals, object.smooth) {
-                (Some(normals), true) => with_file_normals(&positions, &model.triangles, normals),
-                _ => with_normals(&positions, &model.triangles, object.smooth),
-            }
+            return tessellate_part(object, model, (lo + hi) * 0.5);
         }
     };
     local.transformed(transform)
+}
+
+/// The world-space mesh of one part of a mesh object's file: `geometry` moved so that the
+/// file's `centre` (the centre of the whole file's bounds, in its own space) sits at the object's
+/// position, scaled by its `scale` and turned by its rotation. Normals come from the file when
+/// it gives them and the object is smooth, otherwise from the faces within the crease angle.
+///
+/// # Panics
+/// If `object` is not a mesh object (a caller bug).
+pub fn tessellate_part(object: &Object, geometry: &ModelGeometry, centre: Vec3) -> Mesh {
+    let Shape::Mesh { scale, .. } = &object.shape else {
+        panic!("only mesh objects have model parts");
+    };
+    let positions: Vec<Vec3> = geometry
+        .positions
+        .iter()
+        .map(|&p| (p - centre) * *scale)
+        .collect();
+    let local = match (&geometry.corner_normals, object.smooth) {
+        (Some(normals), true) => with_file_normals(&positions, &geometry.triangles, normals),
+        _ => with_normals(&positions, &geometry.triangles, object.smooth),
+    };
+    local.transformed(object_transform(object))
 }
 
 /// A mesh using the file's own corner normals; corners with equal position and normal share a vertex.

@@ -4,16 +4,7 @@ use std::fmt;
 
 /// Which of the three classic algorithms draws the image.
 #[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Hash,
-    Default,
-    clap::ValueEnum,
-    serde::Serialize,
-    serde::Deserialize,
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize,
 )]
 #[serde(rename_all = "lowercase")]
 pub enum Algorithm {
@@ -23,7 +14,6 @@ pub enum Algorithm {
     /// Z-buffer, normal interpolated across faces, lighting at every pixel.
     Phong,
     /// Backward (Whitted) ray tracing with shadows and reflections.
-    #[value(alias = "raytrace")]
     Ray,
 }
 

@@ -6,8 +6,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::lane_vec::V3;
-use super::lanes::Lanes;
+use super::simd::{Lanes, V3};
 use crate::scene::Camera;
 
 /// Distance of the near clipping plane in front of the eye, world units.

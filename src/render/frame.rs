@@ -1,15 +1,24 @@
-//! A rendered image in linear RGB, and its 8-bit sRGB encoding.
+//! A rendered image in linear RGB with optional coverage, and its 8- and 16-bit sRGB encodings.
+
+use std::iter::Sum;
+use std::ops::{AddAssign, Mul};
 
 use glam::Vec3;
 use rayon::prelude::*;
 
-/// A `width`×`height` image of linear RGB, row-major from the top-left pixel.
+/// A `width`×`height` image of linear RGB, row-major from the top-left pixel, with coverage
+/// when the render was asked for it.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Frame {
     pub width: u32,
     pub height: u32,
-    /// `width·height` linear RGB values (not clamped).
+    /// `width·height` linear RGB values (not clamped); premultiplied by [`Frame::alpha`] when
+    /// that is present (the background left out).
     pub pixels: Vec<Vec3>,
+    /// Coverage as alpha: per pixel, the fraction of its samples on which some surface lies, in
+    /// [0, 1] (0 on the background, 1 inside an object). Present when the render was asked for
+    /// it ([`crate::render::RenderOptions::alpha`]).
+    pub alpha: Option<Vec<f32>>,
 }
 
 impl Frame {
@@ -19,6 +28,7 @@ impl Frame {
             width,
             height,
             pixels: vec![color; width as usize * height as usize],
+            alpha: None,
         }
     }
 
@@ -28,25 +38,26 @@ impl Frame {
         self.pixels[y as usize * self.width as usize + x as usize]
     }
 
-    /// A `width`×`height` frame whose every pixel `draw` writes.
-    pub fn drawn<E>(
-        width: u32,
-        height: u32,
-        draw: impl FnOnce(&mut [Vec3]) -> Result<(), E>,
-    ) -> Result<Frame, E> {
-        let mut frame = Frame::default();
-        frame.reshape(width, height);
-        draw(&mut frame.pixels)?;
-        Ok(frame)
+    /// The alpha of the pixel at column `x`, row `y`: its coverage, or 1 without alpha.
+    #[inline]
+    pub fn alpha_at(&self, x: u32, y: u32) -> f32 {
+        self.alpha
+            .as_ref()
+            .map_or(1.0, |a| a[y as usize * self.width as usize + x as usize])
     }
 
-    /// Makes this a `width`×`height` frame whose pixels are about to be overwritten: the buffer
-    /// is kept when it has that size already, else replaced by zeroed memory, whose pages the
-    /// render threads then fault in as they write, in parallel.
-    pub fn reshape(&mut self, width: u32, height: u32) {
+    /// Makes this a `width`×`height` frame, with an alpha channel when `alpha`, whose pixels are
+    /// about to be overwritten: each buffer is kept when it has that size already, else replaced
+    /// by zeroed memory, whose pages the render threads then fault in as they write, in parallel.
+    pub fn reshape(&mut self, width: u32, height: u32, alpha: bool) {
         let len = width as usize * height as usize;
         if self.pixels.len() != len {
             self.pixels = bytemuck::zeroed_vec(len);
+        }
+        match &mut self.alpha {
+            Some(a) if alpha && a.len() == len => {}
+            _ if alpha => self.alpha = Some(bytemuck::zeroed_vec(len)),
+            _ => self.alpha = None,
         }
         (self.width, self.height) = (width, height);
     }
@@ -66,8 +77,12 @@ impl Frame {
 }
 
 /// Averages each `n`×`n` block of `samples`, an image `width` samples wide, into one pixel of
-/// `out`, an image `width / n` pixels wide and as many rows as `out` holds. Rows in parallel.
-pub fn box_filter(samples: &[Vec3], width: u32, n: u32, out: &mut [Vec3]) {
+/// `out`, an image `width / n` pixels wide and as many rows as `out` holds: colours, or
+/// coverage. Rows in parallel.
+pub fn box_filter<T>(samples: &[T], width: u32, n: u32, out: &mut [T])
+where
+    T: Copy + Default + Send + Sync + Sum + AddAssign + Mul<f32, Output = T>,
+{
     let (width, n) = (width as usize, n as usize);
     let out_width = width / n;
     let scale = 1.0 / (n * n) as f32;
@@ -75,10 +90,10 @@ pub fn box_filter(samples: &[Vec3], width: u32, n: u32, out: &mut [Vec3]) {
         .enumerate()
         .for_each(|(y, row)| {
             for (x, pixel) in row.iter_mut().enumerate() {
-                let mut sum = Vec3::ZERO;
+                let mut sum = T::default();
                 for sy in 0..n {
                     let start = (y * n + sy) * width + x * n;
-                    sum += samples[start..start + n].iter().copied().sum::<Vec3>();
+                    sum += samples[start..start + n].iter().copied().sum::<T>();
                 }
                 *pixel = sum * scale;
             }
@@ -88,19 +103,41 @@ pub fn box_filter(samples: &[Vec3], width: u32, n: u32, out: &mut [Vec3]) {
 /// Linear [0, 1] (clamped) to an 8-bit sRGB code value.
 #[inline]
 pub fn encode_srgb(linear: f32) -> u8 {
-    let c = linear.clamp(0.0, 1.0);
-    let s = if c <= 0.003_130_8 {
-        12.92 * c
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
-    };
-    (s * 255.0 + 0.5) as u8
+    (srgb_curve(linear) * 255.0 + 0.5) as u8
+}
+
+/// Linear [0, 1] (clamped) to a 16-bit sRGB code value.
+#[inline]
+pub fn encode_srgb16(linear: f32) -> u16 {
+    (srgb_curve(linear) * 65535.0 + 0.5) as u16
 }
 
 /// An 8-bit sRGB code value back to linear [0, 1].
 #[inline]
 pub fn decode_srgb(code: u8) -> f32 {
-    let s = code as f32 / 255.0;
+    srgb_to_linear(code as f32 / 255.0)
+}
+
+/// A 16-bit sRGB code value back to linear [0, 1].
+#[inline]
+pub fn decode_srgb16(code: u16) -> f32 {
+    srgb_to_linear(code as f32 / 65535.0)
+}
+
+/// The sRGB transfer function: linear [0, 1] (clamped) to encoded [0, 1].
+#[inline]
+fn srgb_curve(linear: f32) -> f32 {
+    let c = linear.clamp(0.0, 1.0);
+    if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// The inverse of [`srgb_curve`]: encoded [0, 1] to linear [0, 1].
+#[inline]
+fn srgb_to_linear(s: f32) -> f32 {
     if s <= 0.04045 {
         s / 12.92
     } else {

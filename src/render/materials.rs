@@ -3,8 +3,7 @@
 
 use std::borrow::Cow;
 
-use super::lane_vec::V3;
-use super::lanes::{F32x8, Lanes, WIDTH};
+use super::simd::{F32x8, Lanes, V3, WIDTH};
 use crate::scene::Material;
 use crate::world::World;
 

@@ -1,6 +1,7 @@
 //! What to render: size, algorithm, samples, and the limits that keep a request sane.
 
 use std::fmt;
+use std::num::NonZeroUsize;
 use std::str::FromStr;
 
 use super::algorithm::Algorithm;
@@ -81,10 +82,18 @@ pub struct RenderOptions {
     pub shadows: bool,
     /// Ray tracer: reflection depth; `None` takes the scene's `max_depth`.
     pub max_depth: Option<u32>,
+    /// Whether the frame also carries coverage as alpha ([`crate::render::Frame::alpha`]): its
+    /// colours are then premultiplied, the background left out. Off, the frame has no alpha and
+    /// its colours include the background.
+    pub alpha: bool,
+    /// Render threads; `None` uses one per core (rayon's global pool). The image is the same
+    /// for any count.
+    pub threads: Option<NonZeroUsize>,
 }
 
 impl RenderOptions {
-    /// Options for `algorithm` at `width`×`height`, one sample, shadows on, the scene's depth.
+    /// Options for `algorithm` at `width`×`height`, one sample, shadows on, the scene's depth,
+    /// no alpha, one thread per core.
     pub fn new(algorithm: Algorithm, width: u32, height: u32) -> RenderOptions {
         RenderOptions {
             algorithm,
@@ -93,6 +102,8 @@ impl RenderOptions {
             samples: 1,
             shadows: true,
             max_depth: None,
+            alpha: false,
+            threads: None,
         }
     }
 

@@ -3,7 +3,7 @@
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 /// Counts finished image rows (of the supersampled image) and carries a cancel flag. Cheap to
-/// poll. [`crate::render::render`] sets the total; the algorithms advance it as rows finish.
+/// poll. [`crate::render::Renderer::render`] sets the total; the algorithms advance it as rows finish.
 #[derive(Debug, Default)]
 pub struct Progress {
     done: AtomicU64,

@@ -1,15 +1,14 @@
 //! The one lighting function every renderer calls: the Phong model summed over point lights.
 //!
 //! It is written once over [`Lanes`]: the ray tracer lights one hit at a time (`f32`), the
-//! Z-buffer eight pixels or vertices at a time ([`F32x8`]). Both run the same operations in the
-//! same order, so a point gets the same colour bits whichever renderer lights it.
+//! Z-buffer eight pixels or vertices at a time ([`F32x8`](super::simd::F32x8)). Both run the same
+//! operations in the same order, so a point gets the same colour bits whichever renderer lights
+//! it.
 
 use glam::Vec3;
 
-use super::lane_vec::V3;
-use super::lanes::Lanes;
 use super::materials::MaterialLanes;
-use super::pow::pow;
+use super::simd::{Lanes, V3, pow};
 use crate::scene::{Falloff, Light};
 use crate::world::World;
 
@@ -112,3 +111,6 @@ impl<'a> Lighting<'a> {
         .to_vec3()
     }
 }
+
+#[cfg(test)]
+mod tests;

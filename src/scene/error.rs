@@ -40,6 +40,13 @@ pub enum SceneError {
     /// An OBJ model referenced by the scene could not be loaded.
     #[error("{}: cannot load the OBJ model of object[{index}]: {}", error.location(), error.problem)]
     Obj { index: usize, error: ObjError },
+    /// A glTF model referenced by the scene could not be loaded.
+    #[error("{path}: cannot load the glTF model of object[{index}]: {error}")]
+    Gltf {
+        index: usize,
+        path: PathBuf,
+        error: crate::mesh::gltf::GltfError,
+    },
 }
 
 /// `:12` for line 12, nothing when the line is unknown.

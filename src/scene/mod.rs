@@ -9,6 +9,7 @@ mod material;
 mod model;
 mod object;
 mod validate;
+mod warning;
 
 pub use error::SceneError;
 pub use falloff::Falloff;
@@ -19,3 +20,4 @@ pub use material::Material;
 pub use model::{Camera, Light, Scene};
 pub use object::{Object, ObjectError, Shape, ShapeKind};
 pub use validate::{Components, Invalid, Problem, validate};
+pub use warning::SceneWarning;

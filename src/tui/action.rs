@@ -1,7 +1,7 @@
 //! Everything the user (or a finished background job) can ask of the editor. Keys become
 //! Actions in [`super::input`]; [`super::update::apply`] carries them out.
 
-use super::app::AddKind;
+use super::mode::AddKind;
 use super::worker::RenderReply;
 use crate::render::Algorithm;
 
@@ -60,20 +60,22 @@ pub enum Action {
     Algorithm(Algorithm),
     /// Toggle the side-by-side view of the three algorithms.
     ToggleCompare,
-    /// Turn the camera around its target, degrees (yaw about +Y, pitch up).
+    /// Turn the view around its target, degrees (yaw about +Y, pitch up).
     Orbit {
         yaw: f32,
         pitch: f32,
     },
-    /// Move camera and target sideways, as fractions of the viewing distance.
+    /// Move the view and its target sideways, as fractions of the viewing distance.
     Pan {
         right: f32,
         up: f32,
     },
-    /// Scale the viewing distance (< 1 moves closer).
+    /// Scale the view's distance to its target (< 1 moves closer).
     Zoom(f32),
-    /// Put the camera back where the scene had it.
+    /// Put the view back at the scene's camera.
     ResetView,
+    /// Make the view the scene's camera: an undoable edit.
+    SceneCameraFromView,
     /// A mouse button went down at (column, row).
     DragStart {
         column: u16,

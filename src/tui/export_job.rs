@@ -1,4 +1,5 @@
-//! A PNG export running on its own thread, with progress and cancellation.
+//! An export (an image or a turntable) running on its own thread, with progress and
+//! cancellation.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -6,15 +7,17 @@ use std::thread::JoinHandle;
 use std::time::Instant;
 
 use crate::World;
-use crate::export::save_png;
-use crate::render::{Progress, RenderOptions, render};
+use crate::export::{Output, Turntable, render_to_file};
+use crate::render::{Progress, RenderOptions};
 use crate::scene::Scene;
 
 /// An export in progress.
 #[derive(Debug)]
 pub struct ExportJob {
-    /// Where the PNG goes.
+    /// Where the file goes.
     pub path: PathBuf,
+    /// What is written there.
+    pub output: Output,
     /// What is rendered.
     pub options: RenderOptions,
     /// Fraction done, and the cancel switch.
@@ -25,24 +28,26 @@ pub struct ExportJob {
 }
 
 impl ExportJob {
-    /// Starts rendering `scene` with `options` and writing it to `path`.
+    /// Starts rendering `scene` with `options` and writing it to `path` as `output` says.
     pub fn start(
         scene: Scene,
         base_dir: &Path,
         options: RenderOptions,
+        output: Output,
         path: PathBuf,
     ) -> ExportJob {
         let progress = Arc::new(Progress::new());
         let (p, out, base) = (progress.clone(), path.clone(), base_dir.to_path_buf());
         let handle = std::thread::spawn(move || {
             let started = Instant::now();
-            let world = World::build(&scene, &base).map_err(|e| e.to_string())?;
-            let frame = render(&world, &scene.camera, &options, &p).map_err(|e| e.to_string())?;
-            save_png(&frame, &out).map_err(|e| e.to_string())?;
+            let world = Arc::new(World::build(&scene, &base).map_err(|e| e.to_string())?);
+            render_to_file(&world, &scene.camera, &options, output, &out, &p)
+                .map_err(|e| e.to_string())?;
             Ok(started.elapsed().as_secs_f64() * 1000.0)
         });
         ExportJob {
             path,
+            output,
             options,
             progress,
             started: Instant::now(),
@@ -61,4 +66,18 @@ impl ExportJob {
             .join()
             .unwrap_or_else(|_| Err("the export thread panicked".into()))
     }
+}
+
+/// What the export dialog asks for: a still image when `turntable` (frames, as typed) is 0,
+/// else a turntable of that many frames; the format follows the extension of `path`.
+pub fn export_output(path: &Path, turntable: &str) -> Result<Output, String> {
+    let frames: u32 = turntable
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{}` is not a number of turntable frames", turntable.trim()))?;
+    let turntable = (frames > 0).then(|| Turntable::new(frames));
+    if let Some(t) = turntable {
+        t.check().map_err(|e| e.to_string())?;
+    }
+    Output::for_path(path, None, turntable).map_err(|e| e.to_string())
 }

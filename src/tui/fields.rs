@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 
-use super::app::Item;
+use super::selection::Item;
 use super::text::clean;
 use crate::scene::limits::{self, CountLimits, Limits};
 use crate::scene::{Camera, Light, Object, Scene, Shape, validate};

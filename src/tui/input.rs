@@ -1,5 +1,5 @@
-//! Keys and mouse events become [`Action`]s, depending on the mode and the focused pane.
-//! Nothing else happens here.
+//! Keys and mouse events become [`Action`]s, as the key table [`keys::KEYS`] says for the current
+//! mode and focused pane. Nothing else happens here.
 
 use ratatui::crossterm::event::{
     Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
@@ -7,7 +7,10 @@ use ratatui::crossterm::event::{
 use ratatui::layout::{Position, Rect};
 
 use super::action::Action;
-use super::app::{AddKind, App, Focus, Mode};
+use super::app::App;
+use super::keys::{self, Context, Dir, Does, Trigger};
+use super::mode::Mode;
+use super::selection::Focus;
 use crate::render::Algorithm;
 
 /// Degrees per orbit key press.
@@ -26,133 +29,99 @@ pub fn map(app: &App, event: &Event, preview: Rect) -> Option<Action> {
     }
 }
 
+/// The action for a terminal event while the terminal is too small to show the editor: only
+/// quitting and the help (and the answers inside them) work, since nothing else can be seen.
+pub fn map_too_small(app: &App, event: &Event) -> Option<Action> {
+    let Event::Key(key) = event else {
+        return None;
+    };
+    let action = map(app, event, Rect::default())?;
+    let seen = matches!(app.mode, Mode::Help(_) | Mode::ConfirmQuit);
+    let allowed = matches!(
+        action,
+        Action::Quit | Action::QuitNow | Action::SaveAndQuit | Action::Help
+    );
+    (key.kind != KeyEventKind::Release && (seen || allowed)).then_some(action)
+}
+
+/// The parts of the key table that work now, the first taking precedence.
+pub fn contexts(mode: &Mode, focus: Focus) -> &'static [Context] {
+    match mode {
+        Mode::Normal => match focus {
+            Focus::List => &[Context::List, Context::Anywhere],
+            Focus::Properties => &[Context::Properties, Context::Anywhere],
+            Focus::Preview => &[Context::Preview, Context::Anywhere],
+        },
+        Mode::Edit(_) | Mode::Prompt(..) | Mode::Export(_) => &[Context::Dialogs],
+        Mode::AddMenu(_) => &[Context::AddMenu],
+        Mode::Help(_) => &[Context::Help],
+        Mode::ConfirmQuit => &[Context::QuitQuestion],
+    }
+}
+
 fn key_action(app: &App, key: &KeyEvent) -> Option<Action> {
     let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
-    match &app.mode {
-        Mode::Normal => normal_key(app, key, ctrl),
-        Mode::Edit(_) | Mode::Prompt(..) | Mode::Export(_) => typing_key(key, ctrl),
-        Mode::AddMenu(_) => match key.code {
-            KeyCode::Up | KeyCode::Char('k') => Some(Action::Up),
-            KeyCode::Down | KeyCode::Char('j') => Some(Action::Down),
-            KeyCode::Enter => Some(Action::Submit),
-            KeyCode::Esc | KeyCode::Char('q') | KeyCode::Char('a') => Some(Action::Cancel),
-            KeyCode::Char(c) => AddKind::ALL
-                .into_iter()
-                .find(|k| k.hotkey() == c)
-                .map(Action::Add),
-            _ => None,
-        },
-        Mode::Help(_) => match key.code {
-            KeyCode::Up | KeyCode::Char('k') => Some(Action::Up),
-            KeyCode::Down | KeyCode::Char('j') => Some(Action::Down),
-            _ => Some(Action::Cancel),
-        },
-        Mode::ConfirmQuit => match key.code {
-            KeyCode::Char('y') | KeyCode::Char('Y') => Some(Action::QuitNow),
-            KeyCode::Char('s') | KeyCode::Char('S') => Some(Action::SaveAndQuit),
-            KeyCode::Char('n') | KeyCode::Char('N') | KeyCode::Esc => Some(Action::Cancel),
-            _ => None,
-        },
-    }
-}
-
-fn typing_key(key: &KeyEvent, ctrl: bool) -> Option<Action> {
     let shift = key.modifiers.contains(KeyModifiers::SHIFT);
-    let times = if shift { 10 } else { 1 };
-    match key.code {
-        KeyCode::Enter => Some(Action::Submit),
-        KeyCode::Esc => Some(Action::Cancel),
-        KeyCode::Backspace => Some(Action::Backspace),
-        KeyCode::Char('u') if ctrl => Some(Action::ClearInput),
-        KeyCode::Char('c') if ctrl => Some(Action::Cancel),
-        KeyCode::Up => Some(Action::Up),
-        KeyCode::Down => Some(Action::Down),
-        KeyCode::Tab => Some(Action::FocusNext),
-        KeyCode::BackTab => Some(Action::FocusPrev),
-        KeyCode::Left => Some(Action::Step(-times)),
-        KeyCode::Right => Some(Action::Step(times)),
-        KeyCode::Char(c) if !ctrl => Some(Action::Input(c)),
-        _ => None,
-    }
-}
-
-fn normal_key(app: &App, key: &KeyEvent, ctrl: bool) -> Option<Action> {
-    let shift = key.modifiers.contains(KeyModifiers::SHIFT);
-    if ctrl {
-        return match key.code {
-            KeyCode::Char('r') => Some(Action::Redo),
-            KeyCode::Char('c') => Some(Action::Quit),
-            _ => None,
-        };
-    }
-    // Direction keys: hjkl and arrows; Shift (or HJKL) is the big or sideways variant.
-    let direction = match key.code {
-        KeyCode::Left | KeyCode::Char('h') => Some((-1, 0, shift)),
-        KeyCode::Right | KeyCode::Char('l') => Some((1, 0, shift)),
-        KeyCode::Up | KeyCode::Char('k') => Some((0, -1, shift)),
-        KeyCode::Down | KeyCode::Char('j') => Some((0, 1, shift)),
-        KeyCode::Char('H') => Some((-1, 0, true)),
-        KeyCode::Char('L') => Some((1, 0, true)),
-        KeyCode::Char('K') => Some((0, -1, true)),
-        KeyCode::Char('J') => Some((0, 1, true)),
+    let bound = || {
+        contexts(&app.mode, app.focus())
+            .iter()
+            .flat_map(|&c| keys::rows_of(c))
+            .flat_map(|row| row.bindings)
+            .flat_map(|b| b.triggers.iter().map(move |t| (&b.does, t)))
+    };
+    // Keys the table names win over its catch-alls ("any character", "any other key").
+    let (does, trigger) = bound()
+        .find(|(_, t)| !t.is_fallback() && t.takes(key.code, ctrl, shift))
+        .or_else(|| bound().find(|(_, t)| t.is_fallback() && t.takes(key.code, ctrl, shift)))?;
+    let typed = match key.code {
+        KeyCode::Char(c) => Some(c),
         _ => None,
     };
-    if let Some((dx, dy, big)) = direction {
-        return Some(match app.focus {
-            Focus::Preview if big => Action::Pan {
-                right: -dx as f32 * PAN_STEP,
-                up: dy as f32 * PAN_STEP,
-            },
-            Focus::Preview => Action::Orbit {
-                yaw: -dx as f32 * ORBIT_STEP,
-                pitch: -dy as f32 * ORBIT_STEP,
-            },
-            Focus::Properties if dx != 0 => Action::Step(dx * if big { 10 } else { 1 }),
-            Focus::List if dx > 0 => Action::Edit,
-            _ if dy < 0 => Action::Up,
-            _ if dy > 0 => Action::Down,
-            _ => return None,
-        });
-    }
-    Some(match key.code {
-        KeyCode::Char('q') => Action::Quit,
-        KeyCode::Tab => Action::FocusNext,
-        KeyCode::BackTab => Action::FocusPrev,
-        KeyCode::Enter => Action::Edit,
-        KeyCode::Esc => Action::Cancel,
-        KeyCode::Char('?') => Action::Help,
-        KeyCode::Char('1') => Action::Algorithm(Algorithm::Gouraud),
-        KeyCode::Char('2') => Action::Algorithm(Algorithm::Phong),
-        KeyCode::Char('3') => Action::Algorithm(Algorithm::Ray),
-        KeyCode::Char('c') => Action::ToggleCompare,
-        KeyCode::Char('a') => Action::AddMenu,
-        KeyCode::Char('d') => Action::Duplicate,
-        KeyCode::Char('x') | KeyCode::Delete => Action::Remove,
-        KeyCode::Char('u') => Action::Undo,
-        KeyCode::Char('s') => Action::Save,
-        KeyCode::Char('S') => Action::SaveAs,
-        KeyCode::Char('o') => Action::Open,
-        KeyCode::Char('e') => Action::Export,
-        KeyCode::Char('r') | KeyCode::Home => Action::ResetView,
-        KeyCode::Char('[') => Action::Orbit {
-            yaw: ORBIT_STEP,
-            pitch: 0.0,
+    action(does, trigger.dir(), typed)
+}
+
+/// The action `does` asks for, pointing `dir`, with the character `typed` on the key.
+fn action(does: &Does, dir: Option<Dir>, typed: Option<char>) -> Option<Action> {
+    Some(match does {
+        Does::Act(action) => action.clone(),
+        Does::Move => match dir? {
+            Dir::Up => Action::Up,
+            Dir::Down => Action::Down,
+            Dir::Left | Dir::Right => return None,
         },
-        KeyCode::Char(']') => Action::Orbit {
-            yaw: -ORBIT_STEP,
-            pitch: 0.0,
+        Does::Step(n) => match dir? {
+            Dir::Left => Action::Step(-n),
+            Dir::Right => Action::Step(*n),
+            Dir::Up | Dir::Down => return None,
         },
-        KeyCode::Char('{') => Action::Orbit {
-            yaw: 0.0,
-            pitch: ORBIT_STEP,
+        Does::Type => Action::Input(typed?),
+        Does::ShowAlgorithm => {
+            let digit = typed?.to_digit(10)? as usize;
+            Action::Algorithm(*Algorithm::ALL.get(digit.checked_sub(1)?)?)
+        }
+        Does::Orbit => {
+            let (yaw, pitch) = match dir? {
+                Dir::Left => (ORBIT_STEP, 0.0),
+                Dir::Right => (-ORBIT_STEP, 0.0),
+                Dir::Up => (0.0, ORBIT_STEP),
+                Dir::Down => (0.0, -ORBIT_STEP),
+            };
+            Action::Orbit { yaw, pitch }
+        }
+        Does::Pan => {
+            let (right, up) = match dir? {
+                Dir::Left => (PAN_STEP, 0.0),
+                Dir::Right => (-PAN_STEP, 0.0),
+                Dir::Up => (0.0, -PAN_STEP),
+                Dir::Down => (0.0, PAN_STEP),
+            };
+            Action::Pan { right, up }
+        }
+        Does::Zoom => match dir? {
+            Dir::Up => Action::Zoom(ZOOM_STEP),
+            Dir::Down => Action::Zoom(1.0 / ZOOM_STEP),
+            Dir::Left | Dir::Right => return None,
         },
-        KeyCode::Char('}') => Action::Orbit {
-            yaw: 0.0,
-            pitch: -ORBIT_STEP,
-        },
-        KeyCode::Char('+') | KeyCode::Char('=') => Action::Zoom(ZOOM_STEP),
-        KeyCode::Char('-') | KeyCode::Char('_') => Action::Zoom(1.0 / ZOOM_STEP),
-        _ => return None,
     })
 }
 
@@ -162,16 +131,28 @@ fn mouse_action(app: &App, mouse: &MouseEvent, preview: Rect) -> Option<Action> 
     }
     let (column, row) = (mouse.column, mouse.row);
     let inside = preview.contains(Position::new(column, row));
-    match mouse.kind {
-        MouseEventKind::Down(MouseButton::Left) if inside => {
-            Some(Action::DragStart { column, row })
+    let dragging = app.drag.is_some();
+    let (trigger, dir) = match mouse.kind {
+        MouseEventKind::Down(MouseButton::Left) if inside => (Trigger::Drag, None),
+        MouseEventKind::Drag(MouseButton::Left) | MouseEventKind::Up(_) if dragging => {
+            (Trigger::Drag, None)
         }
-        MouseEventKind::Drag(MouseButton::Left) if app.drag.is_some() => {
-            Some(Action::DragTo { column, row })
-        }
-        MouseEventKind::Up(_) if app.drag.is_some() => Some(Action::DragEnd),
-        MouseEventKind::ScrollUp if inside => Some(Action::Zoom(ZOOM_STEP)),
-        MouseEventKind::ScrollDown if inside => Some(Action::Zoom(1.0 / ZOOM_STEP)),
-        _ => None,
+        MouseEventKind::ScrollUp if inside => (Trigger::Wheel, Some(Dir::Up)),
+        MouseEventKind::ScrollDown if inside => (Trigger::Wheel, Some(Dir::Down)),
+        _ => return None,
+    };
+    let does = &keys::rows_of(Context::Mouse)
+        .flat_map(|r| r.bindings)
+        .find(|b| b.triggers.contains(&trigger))?
+        .does;
+    match (trigger, does) {
+        // Dragging orbits in steps as the pointer moves: the gesture's three phases.
+        (Trigger::Drag, Does::Orbit) => Some(match mouse.kind {
+            MouseEventKind::Down(_) => Action::DragStart { column, row },
+            MouseEventKind::Drag(_) => Action::DragTo { column, row },
+            _ => Action::DragEnd,
+        }),
+        (Trigger::Drag, _) => None,
+        _ => action(does, dir, None),
     }
 }

@@ -2,39 +2,56 @@
 //!
 //! Keys become [`action::Action`]s ([`input`]), actions change the [`app::App`] in one place
 //! ([`update`]), widgets draw it ([`view`]), and a worker thread renders the preview ([`worker`]).
+//! The app owns a [`document::Document`] (what is saved) and a [`view_state::ViewState`] (where
+//! the preview looks from): looking around never edits the scene.
 
 pub mod action;
 pub mod app;
+pub mod autosave;
+pub mod color_probe;
+pub mod compact_backend;
+pub mod document;
+pub mod error;
 pub mod export_job;
 pub mod fields;
 pub mod input;
 pub mod keys;
+pub mod mode;
+pub mod motion;
 pub mod orbit;
+pub mod pacer;
 pub mod preview;
 pub mod recovery;
+pub mod selection;
+pub mod signals;
+pub mod term_input;
 pub mod terminal;
 pub mod text;
+pub mod theme;
+pub mod tty_input;
 pub mod update;
 pub mod view;
+pub mod view_state;
 pub mod worker;
 
+pub use error::TuiError;
 pub use preview::ColorMode;
+pub use signals::Exit;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{RecvTimeoutError, Sender, channel};
+use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::time::{Duration, Instant};
 
-use anyhow::Context;
-use ratatui::crossterm::event::{self, Event as TermEvent};
+use ratatui::crossterm::event::Event as TermEvent;
 use ratatui::layout::Rect;
-use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
 
 use crate::scene::Scene;
 use action::Action;
 use app::App;
+use autosave::Autosave;
+use signals::Signals;
 use terminal::TerminalGuard;
 use worker::{Job, RenderReply, Slot, Wanted, Worker};
 
@@ -44,71 +61,114 @@ const TICK: Duration = Duration::from_millis(100);
 /// Something the event loop reacts to.
 enum Event {
     Input(TermEvent),
+    Reply(term_input::Reply),
     Render(RenderReply),
 }
 
 /// Runs the editor on the scene at `scene_path` (the built-in scene when `None`) until the user
-/// quits or the process receives SIGTERM, SIGHUP or SIGINT; unsaved edits then go to the
-/// recovery file.
-pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> {
-    let mut app = load(scene_path.as_deref())?;
-    app.color = color;
+/// quits or the process receives SIGTERM, SIGHUP or SIGINT. Unsaved edits are kept in the
+/// recovery file meanwhile, and written there at once when a signal or an error ends the editor.
+pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<Exit, TuiError> {
+    let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
+    let mut app = load(scene_path.as_deref())?
+        .with_color(color)
+        .with_plain_interface(no_color);
     if let Some(notice) = recovery::notice(scene_path.as_deref()) {
         app.info(notice);
     }
-    let signalled = Arc::new(AtomicBool::new(false));
-    // Raw mode turns Ctrl-C into a key, so SIGINT only comes from `kill`: treat it like SIGTERM.
-    for signal in [SIGTERM, SIGHUP, SIGINT] {
-        signal_hook::flag::register(signal, signalled.clone()).context("cannot watch signals")?;
-    }
+    let signals = Signals::watch().map_err(TuiError::Signals)?;
+    let mut autosave = Autosave::start().map_err(TuiError::Autosave)?;
     let (tx, rx) = channel();
-    spawn_input(tx.clone());
+    let input_tx = tx.clone();
+    tty_input::spawn(move |input| {
+        let event = match input {
+            term_input::TermInput::Event(e) => Event::Input(e),
+            term_input::TermInput::Reply(r) => Event::Reply(r),
+        };
+        input_tx.send(event).is_ok()
+    })
+    .map_err(TuiError::Input)?;
     let worker = Worker::spawn(move |reply| {
         let _ = tx.send(Event::Render(reply));
     });
-    let mut guard = TerminalGuard::enter().context(
-        "cannot set up the terminal (the editor needs one; `rastray render` works without)",
-    )?;
+    let mut guard = TerminalGuard::enter().map_err(TuiError::TerminalSetup)?;
     let mut state = Loop {
         worker,
         sent: None,
         latest: 0,
-        scene: (u64::MAX, Arc::new(app.scene.clone())),
+        scene: (u64::MAX, Arc::new(app.doc.scene().clone())),
         latency: LatencyLog::from_env(),
         pending: None,
     };
     let mut redraw = true;
-    loop {
-        let size = guard.terminal.size()?;
+    let mut pacer = pacer::Pacer::new();
+    let ended = loop {
+        let size = match guard.terminal.size() {
+            Ok(size) => size,
+            Err(e) => break Err(TuiError::Terminal(e)),
+        };
         let areas = view::layout(Rect::new(0, 0, size.width, size.height), &app);
         state.request(&app, areas.map(|a| a.picture));
-        if redraw {
+        let now = Instant::now();
+        // At most one frame in flight: the next waits for the terminal's answer to the last.
+        if (redraw || pacer.needs_exact(now)) && pacer.may_draw(now) {
             let started = Instant::now();
-            guard.draw(|f| f.render_widget(&app, f.area()))?;
+            let cheap = app.present_previews(pacer.moving(now) && pacer.should_ask());
+            if let Err(e) = guard.draw(|f| f.render_widget(&app, f.area())) {
+                break Err(TuiError::Terminal(e));
+            }
+            if pacer.should_ask() {
+                if let Err(e) = guard.ask(pacer::QUERY) {
+                    break Err(TuiError::Terminal(e));
+                }
+                pacer.asked(now, cheap);
+            } else {
+                pacer.drew(cheap);
+            }
             state.drawn(started);
+            redraw = false;
         }
         if app.quit {
-            break;
+            break Ok(Exit::Quit);
         }
-        let first = match rx.recv_timeout(TICK) {
+        let wait = pacer.wake_at().map_or(TICK, |at| {
+            at.saturating_duration_since(Instant::now()).min(TICK)
+        });
+        let first = match rx.recv_timeout(wait) {
             Ok(e) => Some(e),
             Err(RecvTimeoutError::Timeout) => None,
-            Err(RecvTimeoutError::Disconnected) => break,
+            Err(RecvTimeoutError::Disconnected) => {
+                break Err(TuiError::EventsStopped);
+            }
         };
-        redraw = first.is_none() && app.export.is_some();
+        redraw |= first.is_none() && app.is_exporting();
         // Handle everything already queued before drawing again: a held key draws once.
         for event in first
             .into_iter()
             .chain(std::iter::from_fn(|| rx.try_recv().ok()))
         {
+            if let Event::Reply(reply) = &event {
+                if let term_input::Reply::CursorPosition { .. } = reply {
+                    pacer.answered(Instant::now());
+                }
+                continue;
+            }
             redraw = true;
             let picture = areas.map(|a| a.preview).unwrap_or_default();
             let action = match event {
+                Event::Reply(_) => None,
                 Event::Input(ev) => {
+                    if matches!(ev, TermEvent::Key(_) | TermEvent::Mouse(_)) {
+                        pacer.input(Instant::now());
+                    }
                     if let Some(log) = &mut state.latency {
                         log.key_at.get_or_insert(Instant::now());
                     }
-                    input::map(&app, &ev, picture)
+                    if areas.is_some() {
+                        input::map(&app, &ev, picture)
+                    } else {
+                        input::map_too_small(&app, &ev)
+                    }
                 }
                 // A frame for a superseded request is stale: dropped. Warnings describe the
                 // world built, whichever request built it: kept.
@@ -126,54 +186,47 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> anyhow::Result<()> 
             }
         }
         update::apply(&mut app, Action::Tick);
-        if signalled.load(Ordering::Relaxed) {
-            drop(guard);
-            if app.dirty {
-                let path = recovery::write(&app.scene, app.path.as_deref())?;
-                eprintln!("rastray: unsaved edits written to {}", path.display());
-            }
-            return Ok(());
+        if let Some(problem) = autosave.note(&app) {
+            app.error(problem);
         }
-    }
-    Ok(())
+        if let Some(signal) = signals.received() {
+            break Ok(Exit::Signal(signal));
+        }
+    };
+    // Edits reach the disk before the terminal is touched: it may be gone.
+    let recovered = match ended {
+        Ok(Exit::Quit) => autosave.quit().map(|()| None),
+        _ => autosave.flush(&app).transpose(),
+    };
+    drop(guard);
+    recovery::report(&recovered);
+    // A lost terminal fails a draw just before its SIGHUP arrives: the signal tells the story.
+    signals
+        .received()
+        .map_or(ended, |signal| Ok(Exit::Signal(signal)))
 }
 
 /// The app on the scene at `path`, or on the built-in scene.
 /// The editor on the scene at `path`; a path that does not exist yet starts a new scene there
 /// from the built-in one (written on the first save), as text editors do with a new file name.
-fn load(path: Option<&Path>) -> anyhow::Result<App> {
+fn load(path: Option<&Path>) -> Result<App, TuiError> {
     Ok(match path {
         Some(p) if !p.exists() => {
-            let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
+            let base = document::folder_of(p);
             let mut app = App::new(crate::scene::default_scene(), Some(p.to_path_buf()), base);
             app.info(format!("new scene {}: s saves it", p.display()));
             app
         }
         Some(p) => {
             let scene = crate::scene::load(p)?;
-            let base = p.parent().map(Path::to_path_buf).unwrap_or_default();
-            App::new(scene, Some(p.to_path_buf()), base)
+            App::new(scene, Some(p.to_path_buf()), document::folder_of(p))
         }
         None => App::new(
             crate::scene::default_scene(),
             None,
-            std::env::current_dir().context("no working directory")?,
+            std::env::current_dir().map_err(TuiError::WorkingDirectory)?,
         ),
     })
-}
-
-/// Reads terminal events on their own thread, so the loop also wakes for finished frames.
-fn spawn_input(tx: Sender<Event>) {
-    std::thread::Builder::new()
-        .name("rastray-input".into())
-        .spawn(move || {
-            while let Ok(ev) = event::read() {
-                if tx.send(Event::Input(ev)).is_err() {
-                    break;
-                }
-            }
-        })
-        .expect("the input thread can be started");
 }
 
 /// The render jobs the app needs for a picture area of `picture`.
@@ -186,20 +239,20 @@ pub fn wanted(app: &App, picture: Rect) -> Option<Wanted> {
             height: 2 * area.height as u32,
         })
     };
-    let jobs: Vec<Job> = if app.compare {
+    let jobs: Vec<Job> = if app.view.compare() {
         view::compare_panes(picture)
             .into_iter()
             .enumerate()
             .filter_map(|(i, (algorithm, _, image))| job(Slot::Compare(i), algorithm, image))
             .collect()
     } else {
-        job(Slot::Main, app.algorithm, picture)
+        job(Slot::Main, app.view.algorithm(), picture)
             .into_iter()
             .collect()
     };
     (!jobs.is_empty()).then_some(Wanted {
-        generation: app.generation,
-        camera: app.scene.camera,
+        generation: app.doc.generation(),
+        camera: app.view.camera(),
         jobs,
     })
 }
@@ -233,13 +286,16 @@ impl Loop {
         let Some(wanted) = wanted.filter(|w| self.sent.as_ref() != Some(w)) else {
             return;
         };
-        if self.scene.0 != app.generation {
-            self.scene = (app.generation, Arc::new(app.scene.clone()));
+        let generation = app.doc.generation();
+        if self.scene.0 != generation {
+            self.scene = (generation, Arc::new(app.doc.scene().clone()));
         }
         self.sent = Some(wanted.clone());
-        let id = self
-            .worker
-            .request(wanted, self.scene.1.clone(), app.base_dir.clone());
+        let id = self.worker.request(
+            wanted,
+            self.scene.1.clone(),
+            app.doc.base_dir().to_path_buf(),
+        );
         self.latest = id;
         self.pending = key_at.map(|key_at| Pending {
             id,

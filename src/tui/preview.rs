@@ -3,28 +3,24 @@
 
 use ratatui::style::Color;
 
+use super::theme::TERMINAL_DEFAULT;
 use crate::render::Frame;
 
 /// How colours reach the terminal.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ColorMode {
     /// 24-bit RGB escape sequences.
     #[default]
     Truecolor,
     /// The nearest entry of the xterm 256-colour palette.
-    #[value(name = "256")]
     Ansi256,
 }
 
 impl ColorMode {
-    /// Truecolor when `COLORTERM` says the terminal has it, the 256-colour palette otherwise.
+    /// Truecolor when `COLORTERM` says so or the terminal answers that it has it, the
+    /// 256-colour palette otherwise (see [`super::color_probe`]).
     pub fn detect() -> ColorMode {
-        match std::env::var("COLORTERM") {
-            Ok(v) if v.eq_ignore_ascii_case("truecolor") || v.eq_ignore_ascii_case("24bit") => {
-                ColorMode::Truecolor
-            }
-            _ => ColorMode::Ansi256,
-        }
+        super::color_probe::detect()
     }
 
     /// The terminal colour for an 8-bit sRGB triple.
@@ -91,26 +87,38 @@ pub fn halves_match(a: [u8; 3], b: [u8; 3]) -> bool {
 /// both present → '▀' upper on lower; only the upper one (odd image height) → '▀' on the default
 /// background; none → an empty cell.
 pub fn half_block(upper: Option<[u8; 3]>, lower: Option<[u8; 3]>, mode: ColorMode) -> HalfBlock {
+    half_block_each(upper.map(|c| (c, mode)), lower.map(|c| (c, mode)))
+}
+
+/// As [`half_block`], with a colour mode for each pixel (a motion frame draws some pixels in the
+/// 256-colour palette, see [`super::motion`]).
+pub fn half_block_each(
+    upper: Option<([u8; 3], ColorMode)>,
+    lower: Option<([u8; 3], ColorMode)>,
+) -> HalfBlock {
     let lower = match (upper, lower) {
-        (Some(u), Some(l)) if halves_match(u, l) => Some(u),
+        (Some(u), Some(l)) if halves_match(u.0, l.0) => Some(u),
         _ => lower,
     };
-    let (upper, lower) = (upper.map(|c| mode.color(c)), lower.map(|c| mode.color(c)));
+    let (upper, lower) = (
+        upper.map(|(c, mode)| mode.color(c)),
+        lower.map(|(c, mode)| mode.color(c)),
+    );
     match (upper, lower) {
         (Some(u), Some(l)) if u == l => HalfBlock {
             symbol: " ",
-            fg: Color::Reset,
+            fg: TERMINAL_DEFAULT,
             bg: u,
         },
         (Some(u), l) => HalfBlock {
             symbol: "▀",
             fg: u,
-            bg: l.unwrap_or(Color::Reset),
+            bg: l.unwrap_or(TERMINAL_DEFAULT),
         },
         (None, _) => HalfBlock {
             symbol: " ",
-            fg: Color::Reset,
-            bg: Color::Reset,
+            fg: TERMINAL_DEFAULT,
+            bg: TERMINAL_DEFAULT,
         },
     }
 }

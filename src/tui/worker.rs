@@ -5,15 +5,13 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
-use std::time::Instant;
 
 use super::preview::PreviewImage;
 use crate::World;
-use crate::render::accel::SceneAccel;
-use crate::render::{Algorithm, Progress, RenderError, RenderOptions, render_prepared};
+use crate::render::{Algorithm, Frame, Progress, RenderError, RenderOptions, Renderer};
 use crate::scene::{Camera, Scene};
 use crate::warnings::{Warning, warnings};
-use crate::world::ObjCache;
+use crate::world::MeshFileCache;
 
 /// Where a rendered image goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -129,10 +127,11 @@ impl Worker {
 
 /// The thread's loop: take the newest request, build the world if needed, render each job.
 fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
-    let mut cache = ObjCache::default();
+    let mut cache = MeshFileCache::default();
     let mut world: Option<(u64, Arc<World>)> = None;
-    // The ray tracer's BVH of the current world, kept while only the camera moves.
-    let mut accel: Option<(u64, SceneAccel)> = None;
+    // Keeps the ray tracer's BVH of the current world while only the camera moves.
+    let mut renderer: Option<Renderer> = None;
+    let mut frame = Frame::default();
     // The warnings of the last world built.
     let mut warned: Vec<Warning> = Vec::new();
     while let Ok(mut request) = rx.recv() {
@@ -172,29 +171,16 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
         let count = request.wanted.jobs.len();
         for (n, job) in request.wanted.jobs.iter().enumerate() {
             let options = RenderOptions::new(job.algorithm, job.width, job.height);
-            let started = Instant::now();
-            if job.algorithm == Algorithm::Ray
-                && accel.as_ref().is_none_or(|(g, _)| *g != generation)
-            {
-                accel = Some((generation, SceneAccel::build(&current)));
-            }
-            let prepared = accel
-                .as_ref()
-                .filter(|(g, _)| *g == generation)
-                .map(|(_, a)| a);
-            match render_prepared(
-                &current,
-                prepared,
-                &request.wanted.camera,
-                &options,
-                &request.progress,
-            ) {
-                Ok(frame) => reply(RenderReply::Shot {
+            let renderer = renderer.get_or_insert_with(|| Renderer::new(options));
+            renderer.set_options(options);
+            let camera = &request.wanted.camera;
+            match renderer.render(&current, camera, &request.progress, &mut frame) {
+                Ok(stats) => reply(RenderReply::Shot {
                     id: request.id,
                     slot: job.slot,
                     image: PreviewImage::from_frame(&frame),
-                    millis: started.elapsed().as_secs_f64() * 1000.0,
-                    triangles: current.triangle_count(),
+                    millis: stats.total().as_secs_f64() * 1000.0,
+                    triangles: stats.triangles,
                     last: n + 1 == count,
                 }),
                 Err(RenderError::Cancelled(_)) => break,

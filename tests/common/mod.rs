@@ -2,8 +2,10 @@
 #![allow(dead_code)]
 
 use std::path::Path;
+use std::sync::Arc;
 
-use rastray::render::{Algorithm, Frame, Progress, RenderOptions, render};
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, RenderStats, Renderer};
+use rastray::scene::Camera;
 use rastray::{Scene, World};
 
 /// Parses a scene from TOML text (panics with the error: the tests' scenes are valid).
@@ -12,14 +14,24 @@ pub fn scene(toml: &str) -> Scene {
 }
 
 /// Builds the world of `scene` with OBJ paths relative to the crate root.
-pub fn world(scene: &Scene) -> World {
-    World::build(scene, Path::new(env!("CARGO_MANIFEST_DIR"))).unwrap_or_else(|e| panic!("{e}"))
+pub fn world(scene: &Scene) -> Arc<World> {
+    let world = World::build(scene, Path::new(env!("CARGO_MANIFEST_DIR")));
+    Arc::new(world.unwrap_or_else(|e| panic!("{e}")))
+}
+
+/// Renders `world` seen by `camera` with `options` into a new frame, by a new renderer.
+pub fn render(world: &Arc<World>, camera: &Camera, options: RenderOptions) -> (Frame, RenderStats) {
+    let mut frame = Frame::default();
+    let stats = Renderer::new(options)
+        .render(world, camera, &Progress::new(), &mut frame)
+        .expect("render");
+    (frame, stats)
 }
 
 /// Renders `scene` with `algorithm` at `width`×`height`, one sample per pixel.
 pub fn draw(scene: &Scene, algorithm: Algorithm, width: u32, height: u32) -> Frame {
     let options = RenderOptions::new(algorithm, width, height);
-    render(&world(scene), &scene.camera, &options, &Progress::new()).expect("render")
+    render(&world(scene), &scene.camera, options).0
 }
 
 /// The default scene file shipped in scenes/.

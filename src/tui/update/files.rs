@@ -3,70 +3,33 @@
 use std::path::{Path, PathBuf};
 
 use super::edits::add_object;
-use super::{move_index, type_into, type_line};
+use super::{type_into, type_line};
 use crate::render::{Algorithm, RenderOptions, Size};
 use crate::scene::{Object, Shape, ShapeKind};
 use crate::tui::action::Action;
-use crate::tui::app::{App, ExportField, ExportForm, LineEdit, Mode, PromptPurpose};
-use crate::tui::export_job::ExportJob;
+use crate::tui::app::{App, Previews};
+use crate::tui::export_job::{ExportJob, export_output};
+use crate::tui::mode::{ExportField, ExportForm, LineEdit, Mode, PromptPurpose};
+use crate::tui::selection::{Selection, wrap_step};
 
 pub(super) fn path_text(app: &App) -> String {
-    app.path
-        .as_ref()
+    app.doc
+        .path()
         .map(|p| p.display().to_string())
         .unwrap_or_else(|| "scene.toml".into())
 }
 
 pub(super) fn save(app: &mut App) {
-    match app.path.clone() {
+    match app.doc.path().map(Path::to_path_buf) {
         Some(path) => save_to(app, &path).unwrap_or_else(|e| app.error(e)),
         None => app.mode = Mode::Prompt(PromptPurpose::SaveAs, LineEdit::new(path_text(app))),
     }
 }
 
 pub(super) fn save_to(app: &mut App, path: &Path) -> Result<(), String> {
-    // Mesh paths are relative to the scene file: saving into another folder re-expresses them.
-    let new_base = base_of(path);
-    let mut scene = app.scene.clone();
-    rebase_mesh_paths(&mut scene, &app.base_dir, &new_base);
-    crate::scene::save(&scene, path).map_err(|e| e.to_string())?;
-    app.scene = scene;
-    app.dirty = false;
-    if app.path.as_deref() != Some(path) {
-        app.base_dir = new_base;
-        app.path = Some(path.to_path_buf());
-        app.generation += 1;
-    }
+    app.doc.save_to(path).map_err(|e| e.to_string())?;
     app.info(format!("saved {}", path.display()));
     Ok(())
-}
-
-pub(super) fn base_of(path: &Path) -> PathBuf {
-    path.parent().map(Path::to_path_buf).unwrap_or_default()
-}
-
-/// `path` as written in a scene whose file lives in `base`: relative to `base` (with `..` where
-/// needed) when both share a root, absolute otherwise.
-fn relative_to(path: &Path, base: &Path) -> PathBuf {
-    let absolute = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
-    let (path, base) = (absolute(path), absolute(base));
-    let (p, b): (Vec<_>, Vec<_>) = (path.components().collect(), base.components().collect());
-    let common = p.iter().zip(&b).take_while(|(x, y)| x == y).count();
-    if common == 0 {
-        return path;
-    }
-    let mut relative: PathBuf = b[common..].iter().map(|_| "..").collect();
-    relative.extend(&p[common..]);
-    relative
-}
-
-/// Rewrites the mesh paths of `scene`, relative to folder `from`, to be relative to `to`.
-fn rebase_mesh_paths(scene: &mut crate::Scene, from: &Path, to: &Path) {
-    for object in &mut scene.objects {
-        if let Shape::Mesh { path, .. } = &mut object.shape {
-            *path = relative_to(&from.join(&*path), to);
-        }
-    }
 }
 
 /// Where a typed OBJ path points: relative to the working directory, as in a shell, or else to
@@ -100,12 +63,13 @@ pub(super) fn prompt(
     let result = match purpose {
         PromptPurpose::SaveAs => save_to(app, &path),
         PromptPurpose::Open => open(app, &path),
-        PromptPurpose::ObjPath => match find_obj(&path, &app.base_dir) {
+        PromptPurpose::ObjPath => match find_obj(&path, app.doc.base_dir()) {
             Some(found) => {
-                let stored = relative_to(&found, &app.base_dir);
+                let stored = app.doc.stored_path(&found);
+                let center = app.view.camera().target;
                 add_object(
                     app,
-                    Object::new(Shape::new(ShapeKind::Mesh, app.scene.camera.target, stored)),
+                    Object::new(Shape::new(ShapeKind::Mesh, center, stored)),
                 );
                 Ok(())
             }
@@ -121,18 +85,15 @@ pub(super) fn prompt(
     }
 }
 
-/// Replaces the scene with the one at `path`.
+/// Replaces the scene with the one at `path`; the view starts from its camera, and keeps its
+/// algorithm and colours.
 pub fn open(app: &mut App, path: &Path) -> Result<(), String> {
-    let scene = crate::scene::load(path).map_err(|e| e.to_string())?;
-    let mut fresh = App::new(scene, Some(path.to_path_buf()), base_of(path));
-    fresh.algorithm = app.algorithm;
-    fresh.compare = app.compare;
-    fresh.color = app.color;
-    fresh.show_timings = app.show_timings;
-    fresh.generation = app.generation + 1;
-    fresh.export = app.export.take();
-    fresh.info(format!("opened {}", path.display()));
-    *app = fresh;
+    app.doc.open(path).map_err(|e| e.to_string())?;
+    app.view.look_from(app.doc.scene().camera);
+    app.selection = Selection::default();
+    app.previews = Previews::default();
+    app.drag = None;
+    app.info(format!("opened {}", path.display()));
     Ok(())
 }
 
@@ -141,16 +102,17 @@ pub(super) fn open_export(app: &mut App) {
         return app.error("an export is already running (Esc cancels it)");
     }
     let stem = app
-        .path
-        .as_ref()
+        .doc
+        .path()
         .and_then(|p| p.file_stem())
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "render".into());
     app.mode = Mode::Export(ExportForm {
         path: format!("{stem}.png"),
         size: "1920x1080".into(),
-        algorithm: app.algorithm,
+        algorithm: app.view.algorithm(),
         samples: "1".into(),
+        turntable: "0".into(),
         field: ExportField::Path,
         pristine: true,
         error: None,
@@ -164,6 +126,7 @@ pub(super) fn export_form(app: &mut App, mut form: ExportForm, action: Action) -
         ExportField::Path => Some(&mut form.path),
         ExportField::Size => Some(&mut form.size),
         ExportField::Samples => Some(&mut form.samples),
+        ExportField::Turntable => Some(&mut form.turntable),
         ExportField::Algorithm => None,
     };
     if let Some(text) = text {
@@ -180,8 +143,8 @@ pub(super) fn export_form(app: &mut App, mut form: ExportForm, action: Action) -
     form.pristine = true;
     match action {
         Action::Cancel => return Mode::Normal,
-        Action::Up | Action::FocusPrev => form.field = fields[move_index(at, fields.len(), false)],
-        Action::Down | Action::FocusNext => form.field = fields[move_index(at, fields.len(), true)],
+        Action::Up | Action::FocusPrev => form.field = fields[wrap_step(at, fields.len(), false)],
+        Action::Down | Action::FocusNext => form.field = fields[wrap_step(at, fields.len(), true)],
         Action::Step(n) if form.field == ExportField::Algorithm => {
             let i = Algorithm::ALL
                 .iter()
@@ -218,12 +181,17 @@ pub(super) fn start_export(app: &mut App, form: &ExportForm) -> Result<(), Strin
     options.check().map_err(|e| e.to_string())?;
     let path = PathBuf::from(form.path.trim());
     if path.as_os_str().is_empty() {
-        return Err("type the PNG's path".into());
+        return Err("type the file's path".into());
     }
+    // The export shows what the preview shows: the scene as edited, seen from the view.
+    let mut scene = app.doc.scene().clone();
+    scene.camera = app.view.camera();
+    let output = export_output(&path, &form.turntable)?;
     app.export = Some(ExportJob::start(
-        app.scene.clone(),
-        &app.base_dir,
+        scene,
+        app.doc.base_dir(),
         options,
+        output,
         path.clone(),
     ));
     app.info(format!(

@@ -1,17 +1,20 @@
-//! Applies an [`Action`] to the [`App`]: the one place the editor's state changes.
+//! Applies an [`Action`] to the [`App`]: the one place the editor's state changes. The document
+//! changes through [`super::document::Document`]'s methods and the view through
+//! [`super::view_state::ViewState`]'s.
 
 mod edits;
 mod files;
 
 pub use files::open;
 
-use edits::{add, begin_edit, commit, duplicate, move_camera, redo, remove, step_field, undo};
+use edits::{add, begin_edit, camera_from_view, duplicate, redo, remove, step_field, undo};
 use files::{cancel_export, export_form, open_export, path_text, poll_export, prompt, save};
 
 use super::action::Action;
-use super::app::{AddKind, App, Focus, LineEdit, Mode, PromptPurpose, Shot};
+use super::app::{App, Shot};
 use super::fields::{self, Part};
-use super::orbit;
+use super::mode::{AddKind, LineEdit, Mode, PromptPurpose};
+use super::selection::{Focus, wrap_step};
 use super::worker::{RenderReply, Slot};
 
 /// Degrees turned per mouse column dragged.
@@ -26,6 +29,7 @@ pub fn apply(app: &mut App, action: Action) {
         Action::Tick => return poll_export(app),
         _ => {}
     }
+    let scene_camera = app.doc.scene().camera;
     match std::mem::take(&mut app.mode) {
         Mode::Normal => normal(app, action),
         Mode::Edit(line) => app.mode = edit(app, line, action),
@@ -43,37 +47,41 @@ pub fn apply(app: &mut App, action: Action) {
             Action::QuitNow => app.quit = true,
             Action::SaveAndQuit => {
                 save(app);
-                app.quit = !app.dirty;
+                app.quit = !app.doc.is_dirty();
             }
             Action::Cancel => {}
             _ => app.mode = Mode::ConfirmQuit,
         },
     }
+    // The scene's camera changed (typed, undone, redone): the view goes there to show it.
+    let camera = app.doc.scene().camera;
+    if camera != scene_camera {
+        app.view.look_from(camera);
+    }
 }
 
 fn normal(app: &mut App, action: Action) {
     match action {
-        Action::Quit if app.dirty => app.mode = Mode::ConfirmQuit,
+        Action::Quit if app.doc.is_dirty() => app.mode = Mode::ConfirmQuit,
         Action::Quit | Action::QuitNow => app.quit = true,
-        Action::FocusNext => app.focus = app.focus.next(),
-        Action::FocusPrev => app.focus = app.focus.prev(),
+        Action::FocusNext => app.selection.focus_on(app.focus().next()),
+        Action::FocusPrev => app.selection.focus_on(app.focus().prev()),
         Action::Up | Action::Down => {
             let down = action == Action::Down;
-            match app.focus {
+            match app.focus() {
                 Focus::Properties => {
                     let n = field_keys(app).len();
-                    app.field = move_index(app.field, n, down);
+                    app.selection.step_field(n, down);
                 }
                 _ => {
                     let n = app.items().len();
-                    app.selected = move_index(app.selected, n, down);
-                    app.field = 0;
+                    app.selection.step_item(n, down);
                 }
             }
         }
         Action::Step(times) => step_field(app, times),
-        Action::Edit => match app.focus {
-            Focus::List => app.focus = Focus::Properties,
+        Action::Edit => match app.focus() {
+            Focus::List => app.selection.focus_on(Focus::Properties),
             _ => begin_edit(app),
         },
         Action::Help => app.mode = Mode::Help(0),
@@ -89,7 +97,7 @@ fn normal(app: &mut App, action: Action) {
         }
         Action::Open => {
             // Offer the recovery file when there is one: the status line pointed at it.
-            let recovered = crate::tui::recovery::path_for(app.path.as_deref());
+            let recovered = crate::tui::recovery::path_for(app.doc.path());
             let text = if recovered.is_file() {
                 recovered.display().to_string()
             } else {
@@ -98,24 +106,20 @@ fn normal(app: &mut App, action: Action) {
             app.mode = Mode::Prompt(PromptPurpose::Open, LineEdit::new(text));
         }
         Action::Export => open_export(app),
-        Action::Algorithm(a) => {
-            app.algorithm = a;
-            app.compare = false;
-        }
-        Action::ToggleCompare => app.compare = !app.compare,
-        Action::Orbit { yaw, pitch } => {
-            move_camera(app, orbit::orbit(&app.scene.camera, yaw, pitch))
-        }
-        Action::Pan { right, up } => move_camera(app, orbit::pan(&app.scene.camera, right, up)),
-        Action::Zoom(f) => move_camera(app, orbit::zoom(&app.scene.camera, f)),
-        Action::ResetView => move_camera(app, app.home),
+        Action::Algorithm(a) => app.view.show_algorithm(a),
+        Action::ToggleCompare => app.view.toggle_compare(),
+        Action::Orbit { yaw, pitch } => app.view.orbit(yaw, pitch),
+        Action::Pan { right, up } => app.view.pan(right, up),
+        Action::Zoom(f) => app.view.zoom(f),
+        Action::ResetView => app.view.look_from(app.doc.scene().camera),
+        Action::SceneCameraFromView => camera_from_view(app),
         Action::DragStart { column, row } => app.drag = Some((column, row)),
         Action::DragTo { column, row } => {
             if let Some((c0, r0)) = app.drag.replace((column, row)) {
                 let yaw = -(column as f32 - c0 as f32) * DRAG_YAW;
                 let pitch = (row as f32 - r0 as f32) * DRAG_PITCH;
                 if yaw != 0.0 || pitch != 0.0 {
-                    move_camera(app, orbit::orbit(&app.scene.camera, yaw, pitch));
+                    app.view.orbit(yaw, pitch);
                 }
             }
         }
@@ -125,24 +129,15 @@ fn normal(app: &mut App, action: Action) {
     }
 }
 
-/// `i` moved one place up or down in a list of `n`, wrapping around.
-fn move_index(i: usize, n: usize, down: bool) -> usize {
-    match (n, down) {
-        (0, _) => 0,
-        (_, true) => (i + 1) % n,
-        (_, false) => (i + n - 1) % n,
-    }
-}
-
 /// The properties of the selected item.
 pub fn field_keys(app: &App) -> Vec<fields::Key> {
-    Part::of(&app.scene, app.item())
+    Part::of(app.doc.scene(), app.item())
         .map(|p| p.keys())
         .unwrap_or_default()
 }
 
 fn chosen_key(app: &App) -> Option<fields::Key> {
-    field_keys(app).get(app.field).copied()
+    field_keys(app).get(app.field()).copied()
 }
 
 /// Applies typing keys to `line`; returns whether the action was one of them.
@@ -181,10 +176,9 @@ fn edit(app: &mut App, mut line: LineEdit, action: Action) -> Mode {
             let Some(key) = chosen_key(app) else {
                 return Mode::Normal;
             };
-            match fields::typed(&app.scene, app.item(), key, &line.text) {
+            match fields::typed(app.doc.scene(), app.item(), key, &line.text) {
                 Ok(new) => {
-                    commit(app, new);
-                    app.camera_streak = false;
+                    app.doc.edit(new);
                     Mode::Normal
                 }
                 Err(message) => {
@@ -200,7 +194,7 @@ fn edit(app: &mut App, mut line: LineEdit, action: Action) -> Mode {
 fn add_menu(app: &mut App, index: usize, action: Action) -> Mode {
     let n = AddKind::ALL.len();
     match action {
-        Action::Up | Action::Down => Mode::AddMenu(move_index(index, n, action == Action::Down)),
+        Action::Up | Action::Down => Mode::AddMenu(wrap_step(index, n, action == Action::Down)),
         Action::Submit => {
             add(app, AddKind::ALL[index.min(n - 1)]);
             std::mem::take(&mut app.mode)
@@ -223,12 +217,16 @@ fn rendered(app: &mut App, reply: RenderReply) {
             triangles,
             ..
         } => {
-            app.triangles = Some(triangles);
-            let shot = Some(Shot { image, millis });
+            app.previews.triangles = Some(triangles);
+            let shot = Some(Shot {
+                image,
+                millis,
+                coarse: None,
+            });
             match slot {
-                Slot::Main => app.shot = shot,
+                Slot::Main => app.previews.shot = shot,
                 Slot::Compare(i) => {
-                    if let Some(s) = app.compare_shots.get_mut(i) {
+                    if let Some(s) = app.previews.compare.get_mut(i) {
                         *s = shot;
                     }
                 }

@@ -2,12 +2,13 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Clear, List, ListItem, ListState, Paragraph, StatefulWidget, Widget, Wrap};
 
 use super::pane;
-use crate::tui::app::{AddKind, ExportField, ExportForm, LineEdit, PromptPurpose};
+use crate::tui::keys::add_hotkey;
+use crate::tui::mode::{AddKind, ExportField, ExportForm, LineEdit, PromptPurpose};
+use crate::tui::theme;
 
 /// A `width`×`height` rectangle centred in `area`, clipped to it.
 pub fn centered(area: Rect, width: u16, height: u16) -> Rect {
@@ -21,17 +22,13 @@ pub fn centered(area: Rect, width: u16, height: u16) -> Rect {
 }
 
 fn input_line(text: &str, active: bool) -> Span<'static> {
-    let style = if active {
-        Style::new().fg(Color::Black).bg(Color::White)
-    } else {
-        Style::new().fg(Color::White)
-    };
+    let style = if active { theme::TYPING } else { theme::TYPED };
     Span::styled(format!("{}{}", text, if active { "▏" } else { "" }), style)
 }
 
 fn error_line(error: &Option<String>) -> Line<'static> {
     match error {
-        Some(e) => Line::styled(format!("✗ {e}"), Style::new().fg(Color::Red)),
+        Some(e) => Line::styled(format!("✗ {e}"), theme::INVALID),
         None => Line::default(),
     }
 }
@@ -45,11 +42,14 @@ impl Widget for AddMenu {
         Clear.render(popup, buf);
         let items: Vec<ListItem> = AddKind::ALL
             .iter()
-            .map(|k| ListItem::new(format!("{}  {}", k.hotkey(), k.label())))
+            .map(|&k| {
+                let hotkey = add_hotkey(k).unwrap_or(' ');
+                ListItem::new(format!("{hotkey}  {}", k.label()))
+            })
             .collect();
         let list = List::new(items)
             .block(pane("Add", true))
-            .highlight_style(Style::new().bg(Color::Yellow).fg(Color::Black))
+            .highlight_style(theme::SELECTED)
             .highlight_symbol("▶");
         StatefulWidget::render(
             list,
@@ -69,17 +69,14 @@ impl Widget for Prompt<'_> {
             PromptPurpose::SaveAs => "Save scene as",
             PromptPurpose::Open if self.2 => "Open scene (unsaved edits are dropped)",
             PromptPurpose::Open => "Open scene",
-            PromptPurpose::ObjPath => "OBJ file (relative to the scene's folder)",
+            PromptPurpose::ObjPath => "OBJ or glTF file (relative to the scene's folder)",
         };
         let popup = centered(area, 64, 5);
         Clear.render(popup, buf);
         Paragraph::new(vec![
             Line::from(input_line(&self.1.text, true)),
             error_line(&self.1.error),
-            Line::styled(
-                "Enter accept · Esc cancel",
-                Style::new().fg(Color::DarkGray),
-            ),
+            Line::styled("Enter accept · Esc cancel", theme::DIM),
         ])
         .wrap(Wrap { trim: false })
         .block(pane(title, true))
@@ -87,37 +84,43 @@ impl Widget for Prompt<'_> {
     }
 }
 
-/// File, size, algorithm and samples of a PNG export.
+/// File, size, algorithm, samples and turntable frames of an export.
 pub struct ExportDialog<'a>(pub &'a ExportForm);
 
 impl Widget for ExportDialog<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let form = self.0;
-        let popup = centered(area, 60, 9);
+        let popup = centered(area, 60, 10);
         Clear.render(popup, buf);
         let row = |label: &str, field: ExportField, value: String| {
             let active = form.field == field;
             Line::from(vec![
                 Span::styled(
                     format!("{}{label:<10}", if active { "▶ " } else { "  " }),
-                    Style::new().fg(if active { Color::Yellow } else { Color::Gray }),
+                    if active { theme::ACCENT } else { theme::LABEL },
                 ),
                 input_line(&value, active),
             ])
         };
         let algorithm = format!("◀ {} ▶", form.algorithm);
+        let mut turntable = row("turntable", ExportField::Turntable, form.turntable.clone());
+        turntable.push_span(Span::styled(
+            "  frames (.gif, .png); 0: image (.png, .exr)",
+            theme::DIM,
+        ));
         Paragraph::new(vec![
             row("file", ExportField::Path, form.path.clone()),
             row("size", ExportField::Size, form.size.clone()),
             row("algorithm", ExportField::Algorithm, algorithm),
             row("samples", ExportField::Samples, form.samples.clone()),
+            turntable,
             error_line(&form.error),
             Line::styled(
                 "↑↓ field · ←→ algorithm · Enter export · Esc cancel",
-                Style::new().fg(Color::DarkGray),
+                theme::DIM,
             ),
         ])
-        .block(pane("Export PNG", true))
+        .block(pane("Export", true))
         .render(popup, buf);
     }
 }
@@ -131,10 +134,7 @@ impl Widget for ConfirmQuit {
         Clear.render(popup, buf);
         Paragraph::new(vec![
             Line::from("The scene has unsaved edits."),
-            Line::styled(
-                "y quit · s save and quit · n stay",
-                Style::new().fg(Color::Yellow),
-            ),
+            Line::styled("y quit · s save and quit · n stay", theme::WARNING),
         ])
         .block(pane("Quit?", true))
         .render(popup, buf);

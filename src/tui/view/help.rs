@@ -2,12 +2,13 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Rect};
-use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::Span;
 use ratatui::widgets::{Cell, Clear, Row, Table, Widget};
 
 use super::dialogs::centered;
 use super::pane;
 use crate::tui::keys::KEYS;
+use crate::tui::theme;
 
 /// A centred table of [`KEYS`], scrolled down by the given number of rows.
 pub struct HelpOverlay(pub usize);
@@ -16,24 +17,27 @@ impl Widget for HelpOverlay {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let popup = centered(area, 96, KEYS.len() as u16 + 3);
         Clear.render(popup, buf);
-        let rows = KEYS.iter().skip(self.0).map(|k| {
+        let keys: Vec<String> = KEYS.iter().map(|k| k.keys()).collect();
+        // The first two columns fit their widest entry; the descriptions take the rest.
+        let width = |text: &str| Span::raw(text).width() as u16;
+        let where_width = KEYS.iter().map(|k| width(k.context.label())).max();
+        let keys_width = keys.iter().map(|k| width(k)).max();
+        let rows = KEYS.iter().zip(&keys).skip(self.0).map(|(k, keys)| {
             Row::new([
-                Cell::from(k.context).style(Style::new().fg(Color::DarkGray)),
-                Cell::from(k.keys).style(Style::new().fg(Color::Yellow)),
-                Cell::from(k.action),
+                Cell::from(k.context.label()).style(theme::DIM),
+                Cell::from(keys.as_str()).style(theme::ACCENT),
+                Cell::from(k.what),
             ])
         });
         Table::new(
             rows,
             [
-                Constraint::Length(10),
-                Constraint::Length(22),
+                Constraint::Length(where_width.unwrap_or(0)),
+                Constraint::Length(keys_width.unwrap_or(0)),
                 Constraint::Min(10),
             ],
         )
-        .header(
-            Row::new(["where", "keys", "what"]).style(Style::new().add_modifier(Modifier::BOLD)),
-        )
+        .header(Row::new(["where", "keys", "what"]).style(theme::HEADING))
         .block(pane("Keys · j/k scroll · any other key closes", true))
         .render(popup, buf);
     }

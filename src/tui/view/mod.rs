@@ -12,11 +12,12 @@ pub use picture::Picture;
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::Line;
 use ratatui::widgets::{Block, BorderType, Paragraph, Widget};
 
-use super::app::{App, Mode};
+use super::app::App;
+use super::mode::Mode;
+use super::theme;
 use crate::render::Algorithm;
 
 /// Smallest terminal that shows the editor, columns × rows.
@@ -68,29 +69,20 @@ pub fn compare_panes(picture: Rect) -> [(Algorithm, Rect, Rect); 3] {
 
 /// A bordered block titled `title`, highlighted when `focused`.
 pub(super) fn pane(title: &str, focused: bool) -> Block<'_> {
-    let style = if focused {
-        Style::new().fg(Color::Yellow)
+    let (border, title_style, border_type) = if focused {
+        (theme::ACCENT, theme::ACCENT_TITLE, BorderType::Thick)
     } else {
-        Style::new().fg(Color::DarkGray)
-    };
-    let title_style = if focused {
-        style.add_modifier(Modifier::BOLD)
-    } else {
-        Style::new()
+        (theme::DIM, theme::PLAIN, BorderType::Plain)
     };
     Block::bordered()
-        .border_type(if focused {
-            BorderType::Thick
-        } else {
-            BorderType::Plain
-        })
-        .border_style(style)
+        .border_type(border_type)
+        .border_style(border)
         .title(Line::styled(format!(" {title} "), title_style))
 }
 
 /// Milliseconds as shown next to a frame, or nothing when timings are hidden.
 pub(super) fn millis(app: &App, ms: f64) -> String {
-    if app.show_timings {
+    if app.view.show_timings() {
         format!("{ms:.1} ms")
     } else {
         "– ms".into()
@@ -116,11 +108,14 @@ impl Widget for &App {
             Mode::Help(scroll) => help::HelpOverlay(*scroll).render(area, buf),
             Mode::AddMenu(index) => dialogs::AddMenu(*index).render(area, buf),
             Mode::Prompt(purpose, line) => {
-                dialogs::Prompt(*purpose, line, self.dirty).render(area, buf)
+                dialogs::Prompt(*purpose, line, self.doc.is_dirty()).render(area, buf)
             }
             Mode::Export(form) => dialogs::ExportDialog(form).render(area, buf),
             Mode::ConfirmQuit => dialogs::ConfirmQuit.render(area, buf),
             Mode::Normal | Mode::Edit(_) => {}
+        }
+        if self.view.plain() {
+            theme::strip_colors(buf, area, areas.picture);
         }
     }
 }

@@ -2,13 +2,15 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{List, ListItem, ListState, StatefulWidget, Widget};
 
 use super::pane;
-use crate::tui::app::{App, Focus, Mode};
+use crate::tui::app::App;
 use crate::tui::fields::Part;
+use crate::tui::mode::Mode;
+use crate::tui::selection::Focus;
+use crate::tui::theme;
 
 /// Label and value of every property of the selected item.
 pub struct Properties<'a>(pub &'a App);
@@ -16,8 +18,8 @@ pub struct Properties<'a>(pub &'a App);
 impl Widget for Properties<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let app = self.0;
-        let focused = app.focus == Focus::Properties;
-        let Some(part) = Part::of(&app.scene, app.item()) else {
+        let focused = app.focus() == Focus::Properties;
+        let Some(part) = Part::of(app.doc.scene(), app.item()) else {
             pane("Properties", focused).render(area, buf);
             return;
         };
@@ -28,24 +30,15 @@ impl Widget for Properties<'_> {
             .into_iter()
             .enumerate()
             .map(|(i, key)| {
-                let label = Span::styled(
-                    format!("{:<width$}", key.label(&part)),
-                    Style::new().fg(Color::Gray),
-                );
+                let label = Span::styled(format!("{:<width$}", key.label(&part)), theme::LABEL);
                 match &app.mode {
-                    Mode::Edit(line) if i == app.field => {
+                    Mode::Edit(line) if i == app.field() => {
                         let mut lines = vec![Line::from(vec![
                             label,
-                            Span::styled(
-                                format!("{}▏", line.text),
-                                Style::new().fg(Color::Black).bg(Color::White),
-                            ),
+                            Span::styled(format!("{}▏", line.text), theme::TYPING),
                         ])];
                         if let Some(error) = &line.error {
-                            lines.push(Line::styled(
-                                format!("  ✗ {error}"),
-                                Style::new().fg(Color::Red),
-                            ));
+                            lines.push(Line::styled(format!("  ✗ {error}"), theme::INVALID));
                         }
                         ListItem::new(lines)
                     }
@@ -57,15 +50,15 @@ impl Widget for Properties<'_> {
             })
             .collect();
         let highlight = if focused {
-            Style::new().bg(Color::Yellow).fg(Color::Black)
+            theme::SELECTED
         } else {
-            Style::new()
+            theme::PLAIN
         };
         let list = List::new(items)
             .block(pane("Properties", focused))
             .highlight_style(highlight)
             .highlight_symbol("▶");
-        let mut state = ListState::default().with_selected(Some(app.field));
+        let mut state = ListState::default().with_selected(Some(app.field()));
         StatefulWidget::render(list, area, buf, &mut state);
     }
 }

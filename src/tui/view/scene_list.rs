@@ -2,13 +2,14 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{List, ListItem, ListState, StatefulWidget, Widget};
 
 use super::pane;
-use crate::tui::app::{App, Focus, Item};
+use crate::tui::app::App;
+use crate::tui::selection::{Focus, Item};
 use crate::tui::text::clean;
+use crate::tui::theme;
 
 /// The list of items, the selected one highlighted.
 pub struct SceneList<'a>(pub &'a App);
@@ -16,45 +17,46 @@ pub struct SceneList<'a>(pub &'a App);
 impl Widget for SceneList<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let app = self.0;
-        let focused = app.focus == Focus::List;
+        let focused = app.focus() == Focus::List;
+        let scene = app.doc.scene();
         let items: Vec<ListItem> = app
             .items()
             .into_iter()
             .map(|item| {
-                let (tag, name, color) = match item {
-                    Item::Settings => ("cam", "camera & scene".to_string(), Color::Cyan),
+                let (tag, name, tag_style) = match item {
+                    Item::Settings => ("cam", "camera & scene".to_string(), theme::TAG_SETTINGS),
                     Item::Light(i) => {
-                        let l = &app.scene.lights[i];
+                        let l = &scene.lights[i];
                         let name = l.name.clone().unwrap_or_else(|| format!("light {}", i + 1));
-                        ("lit", name, Color::Yellow)
+                        ("lit", name, theme::TAG_LIGHT)
                     }
                     Item::Object(i) => {
-                        let o = &app.scene.objects[i];
+                        let o = &scene.objects[i];
                         let tag = match o.shape.kind() {
                             crate::scene::ShapeKind::Icosahedron => "ico",
                             crate::scene::ShapeKind::Box => "box",
                             crate::scene::ShapeKind::Prism => "prm",
                             crate::scene::ShapeKind::Mesh => "obj",
                         };
-                        (tag, o.label().to_string(), Color::Green)
+                        (tag, o.label().to_string(), theme::TAG_OBJECT)
                     }
                 };
                 ListItem::new(Line::from(vec![
-                    Span::styled(format!("{tag} "), Style::new().fg(color)),
+                    Span::styled(format!("{tag} "), tag_style),
                     Span::raw(clean(&name)),
                 ]))
             })
             .collect();
         let highlight = if focused {
-            Style::new().bg(Color::Yellow).fg(Color::Black)
+            theme::SELECTED
         } else {
-            Style::new().add_modifier(Modifier::REVERSED)
+            theme::SELECTED_UNFOCUSED
         };
         let list = List::new(items)
             .block(pane("Scene", focused))
             .highlight_style(highlight)
             .highlight_symbol("▶");
-        let mut state = ListState::default().with_selected(Some(app.selected));
+        let mut state = ListState::default().with_selected(Some(app.selection.item()));
         StatefulWidget::render(list, area, buf, &mut state);
     }
 }

@@ -3,20 +3,22 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Gauge, Paragraph, Widget};
 
 use super::millis;
-use crate::tui::app::{App, Focus, Mode, Tone};
+use crate::tui::app::{App, Tone};
+use crate::tui::mode::Mode;
+use crate::tui::selection::Focus;
 use crate::tui::text::clean;
+use crate::tui::theme;
 
 /// Two lines at the bottom of the screen.
 pub struct StatusBar<'a>(pub &'a App);
 
 /// The keys worth showing for the current mode and pane.
 pub fn hints(app: &App) -> &'static str {
-    match (&app.mode, app.focus) {
+    match (&app.mode, app.focus()) {
         (Mode::Edit(_), _) => "type a value · Enter accept · Esc cancel · Ctrl-u clear",
         (Mode::Prompt(..), _) => "type a path · Enter accept · Esc cancel",
         (Mode::Export(_), _) => "↑↓ field · ←→ algorithm · Enter export · Esc cancel",
@@ -30,27 +32,44 @@ pub fn hints(app: &App) -> &'static str {
             "↑↓ property · ←→ step (Shift ×10) · Enter type · u undo · Tab pane · ? help · q quit"
         }
         (Mode::Normal, Focus::Preview) => {
-            "←→↑↓ orbit · Shift pan · +/- zoom · r reset · drag/wheel · 1 2 3 algo · c compare · ? help"
+            "←→↑↓ orbit · Shift pan · +/- zoom · r reset · C set camera · 1 2 3 algo · c compare · ? help · q quit"
         }
     }
+}
+
+/// `hints` shortened to `width` columns: hints are dropped from the end, but the help and quit
+/// keys (`? …`, `q …`) always stay.
+pub fn fit_hints(hints: &str, width: usize) -> String {
+    const SEPARATOR: &str = " · ";
+    let mut items: Vec<&str> = hints.split(SEPARATOR).collect();
+    let essential = |item: &str| item.starts_with("? ") || item.starts_with("q ");
+    let length = |items: &[&str]| {
+        items.iter().map(|i| i.chars().count()).sum::<usize>()
+            + SEPARATOR.chars().count() * items.len().saturating_sub(1)
+    };
+    while length(&items) > width {
+        let Some(drop) = items.iter().rposition(|i| !essential(i)) else {
+            break;
+        };
+        items.remove(drop);
+    }
+    items.join(SEPARATOR)
 }
 
 impl Widget for StatusBar<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let app = self.0;
         let [top, bottom] = Layout::vertical([Constraint::Length(1); 2]).areas(area);
-        let sep = || Span::styled(" │ ", Style::new().fg(Color::DarkGray));
-        let algorithm = if app.compare {
+        let sep = || Span::styled(" │ ", theme::DIM);
+        let compare = app.view.compare();
+        let algorithm = if compare {
             "Compare".to_string()
         } else {
-            app.algorithm.to_string()
+            app.view.algorithm().to_string()
         };
-        let mut spans = vec![Span::styled(
-            format!(" {algorithm}"),
-            Style::new().fg(Color::Cyan).add_modifier(Modifier::BOLD),
-        )];
-        if let Some(shot) = &app.shot
-            && !app.compare
+        let mut spans = vec![Span::styled(format!(" {algorithm}"), theme::ALGORITHM)];
+        if let Some(shot) = &app.previews.shot
+            && !compare
         {
             spans.extend([
                 sep(),
@@ -59,18 +78,18 @@ impl Widget for StatusBar<'_> {
                 Span::raw(format!("{}×{} px", shot.image.width, shot.image.height)),
             ]);
         }
-        if let Some(t) = app.triangles {
+        if let Some(t) = app.previews.triangles {
             spans.extend([sep(), Span::raw(format!("{t} tris"))]);
         }
         spans.push(sep());
-        if app.dirty {
-            spans.push(Span::styled("● modified ", Style::new().fg(Color::Yellow)));
+        if app.doc.is_dirty() {
+            spans.push(Span::styled("● modified ", theme::WARNING));
         }
         spans.push(Span::raw(app.title()));
         if let Some(status) = &app.status {
             let style = match status.tone {
-                Tone::Info => Style::new().fg(Color::Green),
-                Tone::Error => Style::new().fg(Color::Red).add_modifier(Modifier::BOLD),
+                Tone::Info => theme::INFO,
+                Tone::Error => theme::ERROR,
             };
             spans.extend([sep(), Span::styled(clean(&status.text), style)]);
         }
@@ -83,7 +102,7 @@ impl Widget for StatusBar<'_> {
                         .areas(top);
                 Paragraph::new(line).render(text, buf);
                 Gauge::default()
-                    .gauge_style(Style::new().fg(Color::Magenta).bg(Color::Black))
+                    .gauge_style(theme::PROGRESS)
                     .ratio(job.progress.fraction().clamp(0.0, 1.0))
                     .label(format!(
                         "export {:.0}% · {} s · Esc",
@@ -94,10 +113,25 @@ impl Widget for StatusBar<'_> {
             }
             None => Paragraph::new(line).render(top, buf),
         }
-        Paragraph::new(Line::styled(
-            format!(" {}", hints(app)),
-            Style::new().fg(Color::DarkGray),
-        ))
-        .render(bottom, buf);
+        let shown = fit_hints(hints(app), usize::from(bottom.width).saturating_sub(1));
+        Paragraph::new(Line::styled(format!(" {shown}"), theme::DIM)).render(bottom, buf);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fit_hints;
+
+    #[test]
+    fn hints_give_way_from_the_end_but_help_and_quit_stay() {
+        let hints = "↑↓ select · a add · d dup · ? help · q quit";
+        assert_eq!(fit_hints(hints, 80), hints);
+        assert_eq!(fit_hints(hints, 30), "↑↓ select · ? help · q quit");
+        assert_eq!(fit_hints(hints, 10), "? help · q quit");
+        for width in 15..60 {
+            let fitted = fit_hints(hints, width);
+            assert!(fitted.chars().count() <= width, "{width}: {fitted}");
+            assert!(fitted.ends_with("? help · q quit"), "{width}: {fitted}");
+        }
     }
 }

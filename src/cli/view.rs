@@ -1,0 +1,93 @@
+//! `rastray view`: one render printed to stdout as a picture, in real pixels (kitty, sixel,
+//! iTerm2) where the terminal can show them, else half blocks, or plain text when stdout is not
+//! a terminal.
+
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use anyhow::Context;
+use clap::{Args, ValueEnum};
+use rastray::World;
+use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
+use rastray::terminal_image::{CellArea, CellSize, Protocol};
+use rastray::tui::ColorMode;
+use rastray::tui::preview::PreviewImage;
+
+use super::algorithm_arg::AlgorithmArg;
+
+/// Width / height of the picture: the shape of `rastray render`'s default 1920×1080.
+const ASPECT: f32 = 16.0 / 9.0;
+
+/// Columns when stdout is not a terminal and `--width` is absent.
+const DEFAULT_COLS: u32 = 80;
+
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// Scene file (TOML); the built-in default scene when absent.
+    pub scene: Option<PathBuf>,
+    /// Algorithm.
+    #[arg(short, long, value_enum, default_value_t = AlgorithmArg(Algorithm::Phong))]
+    pub algorithm: AlgorithmArg,
+    /// Width in terminal columns (default: the terminal's width, or 80).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=2000))]
+    pub width: Option<u32>,
+    /// How to draw: guessed from the environment, or one protocol.
+    #[arg(long, value_enum, default_value_t = GraphicsArg::Auto)]
+    pub graphics: GraphicsArg,
+}
+
+/// The `--graphics` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum GraphicsArg {
+    /// kitty, iTerm2 or sixel by the environment; half blocks on other terminals; plain text
+    /// when stdout is not a terminal.
+    Auto,
+    Kitty,
+    Sixel,
+    Iterm2,
+    /// Half-block text in truecolor.
+    Halfblock,
+    /// A character ramp with no escape sequences.
+    Plain,
+}
+
+pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
+    let (scene, base) = super::load_scene(args.scene.as_deref())?;
+    let stdout = std::io::stdout();
+    let is_terminal = stdout.is_terminal();
+    let protocol = match args.graphics {
+        GraphicsArg::Auto => Protocol::detect(is_terminal, |k| std::env::var(k).ok()),
+        GraphicsArg::Kitty => Protocol::Kitty,
+        GraphicsArg::Sixel => Protocol::Sixel,
+        GraphicsArg::Iterm2 => Protocol::Iterm2,
+        GraphicsArg::Halfblock => Protocol::HalfBlock(ColorMode::Truecolor),
+        GraphicsArg::Plain => Protocol::Plain,
+    };
+    let terminal_cols = is_terminal
+        .then(|| ratatui::crossterm::terminal::size().ok())
+        .flatten()
+        .map(|(cols, _)| u32::from(cols));
+    let cols = args.width.or(terminal_cols).unwrap_or(DEFAULT_COLS);
+    let cell = CellSize::default();
+    let area = CellArea::for_aspect(cols, ASPECT, cell);
+    let (width, height) = if protocol.has_pixels() {
+        area.pixels(cell)
+    } else {
+        area.half_block_pixels()
+    };
+    let options = RenderOptions::new(args.algorithm.0, width, height);
+    options.check()?;
+    let world = Arc::new(World::build(&scene, &base)?);
+    let mut frame = Frame::default();
+    Renderer::new(options).render(&world, &scene.camera, &Progress::new(), &mut frame)?;
+    let bytes = protocol
+        .encode(&PreviewImage::from_frame(&frame), area)
+        .context("cannot encode the picture")?;
+    let mut out = stdout.lock();
+    out.write_all(&bytes)?;
+    if protocol.has_pixels() {
+        out.write_all(b"\n")?;
+    }
+    out.flush().context("cannot write to stdout")
+}

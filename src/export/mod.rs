@@ -1,0 +1,28 @@
+//! Renders to files, each written atomically: still images as 8- or 16-bit PNG or as OpenEXR,
+//! with coverage as alpha when the render has it, and turntables as GIF or animated PNG.
+//!
+//! `output` says what to write and holds [`render_to_file`], the one way the command line and
+//! the editor write renders; `format` chooses the encoding from a file name and an explicit
+//! request; `png`, `exr`, `gif_animation` and `apng` encode; `still` renders one image;
+//! `turntable` orbits the camera and streams its frames through `animation` into one file.
+
+mod animation;
+mod apng;
+mod error;
+mod exr;
+mod format;
+mod gif_animation;
+mod output;
+mod png;
+mod still;
+mod turntable;
+
+pub use error::ExportError;
+pub use exr::encode_exr;
+pub use format::{AnimationFormat, FormatError, ImageFormat, PngDepth};
+pub use output::{Exported, Output, render_to_file};
+pub use png::{PngSamples, encode_png, straight};
+pub use still::{encode_image, render_image, save_image};
+pub use turntable::{
+    DEFAULT_FPS, MAX_FPS, MAX_FRAMES, Turntable, TurntableError, TurntableStats, render_turntable,
+};

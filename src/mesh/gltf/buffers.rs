@@ -1,0 +1,139 @@
+//! The bytes behind a glTF document's buffers: the GLB binary chunk, `data:` URIs, and files
+//! beside the model. Nothing is fetched from the network.
+
+use std::path::Path;
+
+use base64::Engine;
+use base64::engine::general_purpose::STANDARD;
+
+use super::error::GltfError;
+
+/// Loads every buffer of `document` in order. `blob` is the GLB binary chunk, when there is one;
+/// relative URIs are resolved against `folder` (the model file's folder).
+pub fn load_buffers(
+    document: &::gltf::Document,
+    blob: Option<Vec<u8>>,
+    folder: &Path,
+) -> Result<Vec<Vec<u8>>, GltfError> {
+    let mut blob = blob;
+    document
+        .buffers()
+        .map(|buffer| {
+            let index = buffer.index();
+            let (source_name, data) = match buffer.source() {
+                ::gltf::buffer::Source::Bin => (
+                    "the GLB binary chunk".to_string(),
+                    blob.take().ok_or_else(|| {
+                        "the file has no binary chunk (or it serves another buffer)".to_string()
+                    }),
+                ),
+                ::gltf::buffer::Source::Uri(uri) => (format!("`{uri}`"), read_uri(uri, folder)),
+            };
+            let data = data.map_err(|reason| GltfError::Buffer {
+                index,
+                source_name,
+                reason,
+            })?;
+            if data.len() < buffer.length() {
+                return Err(GltfError::ShortBuffer {
+                    index,
+                    declared: buffer.length(),
+                    actual: data.len(),
+                });
+            }
+            Ok(data)
+        })
+        .collect()
+}
+
+/// The bytes a buffer URI names: a base64 `data:` URI, or a file relative to `folder`.
+fn read_uri(uri: &str, folder: &Path) -> Result<Vec<u8>, String> {
+    if let Some(rest) = uri.strip_prefix("data:") {
+        let (_, payload) = rest
+            .split_once(";base64,")
+            .ok_or("a data URI that is not base64")?;
+        return STANDARD
+            .decode(payload)
+            .map_err(|e| format!("bad base64: {e}"));
+    }
+    if has_scheme(uri) {
+        return Err("only files beside the model and data URIs are read".into());
+    }
+    let relative = percent_decode(uri).ok_or("the URI has a malformed %-escape")?;
+    let path = folder.join(relative);
+    std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Whether `uri` starts with a scheme such as `https:` (RFC 3986: a letter, then letters,
+/// digits, `+`, `-` or `.`, then `:`).
+fn has_scheme(uri: &str) -> bool {
+    match uri.split_once(':') {
+        Some((scheme, _)) => {
+            let mut chars = scheme.chars();
+            chars.next().is_some_and(|c| c.is_ascii_alphabetic())
+                && chars.all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c))
+                // A Windows drive letter such as `C:` is a path, not a scheme.
+                && scheme.len() > 1
+        }
+        None => false,
+    }
+}
+
+/// `text` with its `%XX` escapes decoded as UTF-8; `None` when an escape or the result is malformed.
+pub fn percent_decode(text: &str) -> Option<String> {
+    let bytes = text.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' {
+            let hex = std::str::from_utf8(bytes.get(i + 1..i + 3)?).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percent_escapes_decode_and_malformed_ones_are_refused() {
+        assert_eq!(
+            percent_decode("box%20data.bin").as_deref(),
+            Some("box data.bin")
+        );
+        assert_eq!(percent_decode("a%C3%A9.bin").as_deref(), Some("aé.bin"));
+        assert_eq!(percent_decode("plain.bin").as_deref(), Some("plain.bin"));
+        assert_eq!(percent_decode("bad%2"), None);
+        assert_eq!(percent_decode("bad%zz.bin"), None);
+        assert_eq!(percent_decode("%ff"), None, "not UTF-8");
+    }
+
+    #[test]
+    fn schemes_are_told_from_paths() {
+        assert!(has_scheme("https://example.com/a.bin"));
+        assert!(has_scheme("file:///tmp/a.bin"));
+        assert!(!has_scheme("a.bin"));
+        assert!(!has_scheme("sub/dir/a.bin"));
+        assert!(!has_scheme("C:/models/a.bin"));
+        assert!(!has_scheme("1abc:def"));
+    }
+
+    #[test]
+    fn data_uris_decode_and_remote_ones_are_refused() {
+        let folder = Path::new(".");
+        assert_eq!(
+            read_uri("data:application/octet-stream;base64,AAEC", folder),
+            Ok(vec![0, 1, 2])
+        );
+        assert!(read_uri("data:text/plain,hello", folder).is_err());
+        assert!(read_uri("data:application/octet-stream;base64,!!", folder).is_err());
+        let remote = read_uri("https://example.com/a.bin", folder).expect_err("remote");
+        assert!(remote.contains("only files"), "{remote}");
+    }
+}

@@ -1,0 +1,287 @@
+//! Reading a `.gltf` or `.glb` file: the container, the schema, the buffers, then every mesh
+//! instance of the default scene with its node transforms applied.
+
+use std::collections::HashSet;
+use std::path::Path;
+
+use ::gltf::json::validation::{Checked, Error as SchemaError, Validate};
+use ::gltf::json::{self, mesh::Semantic};
+use ::gltf::{Document, Gltf, Node};
+use glam::{Mat4, Vec3};
+
+use super::buffers::load_buffers;
+use super::error::GltfError;
+use super::material::phong_from_pbr;
+use super::primitive::{PrimitiveRead, read_primitive};
+use super::warning::ImportWarning;
+use crate::mesh::ModelGeometry;
+use crate::scene::Material;
+
+/// Most node instances a file may expand to (a node reached through several parents counts
+/// once per path).
+pub const MAX_NODE_INSTANCES: usize = 1_000_000;
+
+/// One drawn primitive instance: a node's primitive with that node's transform applied.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GltfPart {
+    /// Which primitive of which node, as `node 2 "Left", mesh 0 "Name" primitive 1`.
+    pub label: String,
+    /// Its triangles in the model's space (every node transform applied).
+    pub geometry: ModelGeometry,
+    /// Its material mapped to Phong; `None` when the primitive names no material.
+    pub material: Option<Material>,
+}
+
+/// A glTF file as rastray draws it: one part per primitive instance, in scene order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GltfModel {
+    /// The drawn primitives; never empty.
+    pub parts: Vec<GltfPart>,
+    /// What was skipped, each reported once.
+    pub warnings: Vec<ImportWarning>,
+}
+
+impl GltfModel {
+    /// Triangles over all parts.
+    pub fn triangle_count(&self) -> usize {
+        self.parts.iter().map(|p| p.geometry.triangles.len()).sum()
+    }
+
+    /// Axis-aligned bounds (min, max) of every part, in the model's space.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        self.parts.iter().map(|p| p.geometry.bounds()).fold(
+            (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+            |(a, b), (c, d)| (a.min(c), b.max(d)),
+        )
+    }
+}
+
+/// Reads the glTF or GLB file at `path`; buffers named by relative URIs are read from its folder.
+pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
+    let bytes = std::fs::read(path).map_err(GltfError::Io)?;
+    let (root, blob) = parse(&bytes)?;
+    let mut warnings = Vec::new();
+    let document = checked_document(root, &mut warnings)?;
+    let folder = path.parent().unwrap_or(Path::new(""));
+    let buffers = load_buffers(&document, blob, folder)?;
+    let mut parts = Vec::new();
+    let mut skipped = 0;
+    let mut triangles = 0u64;
+    let mut textured = HashSet::new();
+    for (node, transform) in node_instances(&document)? {
+        let Some(mesh) = node.mesh() else { continue };
+        for primitive in mesh.primitives() {
+            let label = match mesh.name() {
+                Some(name) => format!(
+                    "mesh {} {name:?} primitive {}",
+                    mesh.index(),
+                    primitive.index()
+                ),
+                None => format!("mesh {} primitive {}", mesh.index(), primitive.index()),
+            };
+            // A primitive makes at most as many triangles as it reads indices (strips and fans
+            // make nearly that many): bound the total before anything is allocated, since a node
+            // hierarchy can instance one mesh many times.
+            triangles += primitive
+                .indices()
+                .or_else(|| primitive.get(&::gltf::Semantic::Positions))
+                .map_or(0, |a| a.count() as u64);
+            if triangles > 3 * crate::world::MAX_TRIANGLES {
+                return Err(GltfError::TooManyTriangles {
+                    limit: crate::world::MAX_TRIANGLES,
+                });
+            }
+            match read_primitive(&primitive, &label, &buffers, transform)? {
+                PrimitiveRead::Skipped(warning) => {
+                    skipped += 1;
+                    warnings.push(warning);
+                }
+                PrimitiveRead::Triangles(geometry) => {
+                    let material = primitive.material();
+                    let phong = material.index().map(|index| {
+                        let pbr = material.pbr_metallic_roughness();
+                        if pbr.base_color_texture().is_some() && textured.insert(index) {
+                            warnings.push(ImportWarning::TextureIgnored {
+                                material: match material.name() {
+                                    Some(name) => format!("material {index} {name:?}"),
+                                    None => format!("material {index}"),
+                                },
+                            });
+                        }
+                        let [r, g, b, _alpha] = pbr.base_color_factor();
+                        phong_from_pbr(
+                            Vec3::new(r, g, b),
+                            pbr.metallic_factor(),
+                            pbr.roughness_factor(),
+                        )
+                    });
+                    let node_label = match node.name() {
+                        Some(name) => format!("node {} {name:?}", node.index()),
+                        None => format!("node {}", node.index()),
+                    };
+                    parts.push(GltfPart {
+                        label: format!("{node_label}, {label}"),
+                        geometry,
+                        material: phong,
+                    });
+                }
+            }
+        }
+    }
+    if parts.is_empty() {
+        return Err(GltfError::NoTriangles { skipped });
+    }
+    let mut seen = HashSet::new();
+    warnings.retain(|w| seen.insert(w.clone()));
+    Ok(GltfModel { parts, warnings })
+}
+
+/// The JSON document and the GLB binary chunk of `bytes`, with container errors told apart.
+fn parse(bytes: &[u8]) -> Result<(json::Root, Option<Vec<u8>>), GltfError> {
+    if bytes.is_empty() {
+        return Err(GltfError::Empty);
+    }
+    if bytes.starts_with(b"glTF") {
+        // The crate subtracts the 12-byte header from the declared length unchecked.
+        let declared = bytes
+            .get(8..12)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize)
+            .ok_or_else(|| GltfError::TruncatedGlb("the 12-byte header is cut short".into()))?;
+        if declared < 12 {
+            return Err(GltfError::BadGlb(format!(
+                "its header declares a length of {declared} bytes"
+            )));
+        }
+        if declared > bytes.len() {
+            return Err(GltfError::TruncatedGlb(format!(
+                "its header declares {declared} bytes but the file has {}",
+                bytes.len()
+            )));
+        }
+    }
+    let gltf = Gltf::from_slice_without_validation(bytes).map_err(|error| match error {
+        ::gltf::Error::Binary(e) => match e {
+            ::gltf::binary::Error::Length { .. }
+            | ::gltf::binary::Error::ChunkLength { .. }
+            | ::gltf::binary::Error::Io(_) => GltfError::TruncatedGlb(e.to_string()),
+            ::gltf::binary::Error::Version(v) => {
+                GltfError::BadGlb(format!("container version {v}, expected 2"))
+            }
+            other => GltfError::BadGlb(other.to_string()),
+        },
+        ::gltf::Error::Deserialize(e) => GltfError::NotGltf(e.to_string()),
+        ::gltf::Error::Io(e) => GltfError::Io(e),
+        other => GltfError::NotGltf(other.to_string()),
+    })?;
+    let root = gltf.document.into_json();
+    if !root.asset.version.starts_with("2.") {
+        return Err(GltfError::Version(root.asset.version));
+    }
+    Ok((root, gltf.blob))
+}
+
+/// Checks `root` against the glTF schema. Required extensions become warnings (rastray reads
+/// none); accessors without a buffer view are allowed, as the specification allows them.
+fn checked_document(
+    root: json::Root,
+    warnings: &mut Vec<ImportWarning>,
+) -> Result<Document, GltfError> {
+    // The crate's schema check looks POSITION accessors up without a bounds check: do it first.
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            if let Some(index) = primitive
+                .attributes
+                .get(&Checked::Valid(Semantic::Positions))
+                && index.value() >= root.accessors.len()
+            {
+                return Err(GltfError::Invalid {
+                    at: format!("meshes[{m}].primitives[{p}].attributes.POSITION"),
+                    problem: format!(
+                        "accessor {} does not exist (the file has {})",
+                        index.value(),
+                        root.accessors.len()
+                    ),
+                });
+            }
+        }
+    }
+    let mut problems = Vec::new();
+    root.validate(&root, json::Path::new, &mut |path, error| {
+        problems.push((path(), error))
+    });
+    let tolerated = |path: &json::Path, error: SchemaError| {
+        let path = path.as_str();
+        (error == SchemaError::Unsupported && path.starts_with("extensionsRequired"))
+            || (error == SchemaError::Missing
+                && path.starts_with("accessors[")
+                && path.ends_with("].bufferView"))
+    };
+    if let Some((path, error)) = problems.iter().find(|(p, e)| !tolerated(p, *e)) {
+        return Err(GltfError::Invalid {
+            at: path.to_string(),
+            problem: error.to_string().to_lowercase(),
+        });
+    }
+    warnings.extend(
+        root.extensions_required
+            .iter()
+            .map(|name| ImportWarning::UnsupportedExtension { name: name.clone() }),
+    );
+    Ok(Document::from_json_without_validation(root))
+}
+
+/// Every node instance of the default scene (or the first scene; or, with no scene, every node
+/// that is no other node's child) with its model-space matrix, parents before children.
+fn node_instances(document: &Document) -> Result<Vec<(Node<'_>, Mat4)>, GltfError> {
+    let roots: Vec<Node> = match document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+    {
+        Some(scene) => scene.nodes().collect(),
+        None => {
+            let children: HashSet<usize> = document
+                .nodes()
+                .flat_map(|n| n.children().map(|c| c.index()))
+                .collect();
+            document
+                .nodes()
+                .filter(|n| !children.contains(&n.index()))
+                .collect()
+        }
+    };
+    // Depth-first with explicit enter/leave steps: no recursion to overflow the stack, and a
+    // node met again while it is still being entered is a cycle.
+    enum Step<'a> {
+        Enter(Node<'a>, Mat4),
+        Leave(usize),
+    }
+    let mut on_path = vec![false; document.nodes().len()];
+    let mut stack: Vec<Step> = roots
+        .into_iter()
+        .rev()
+        .map(|n| Step::Enter(n, Mat4::IDENTITY))
+        .collect();
+    let mut instances = Vec::new();
+    while let Some(step) = stack.pop() {
+        match step {
+            Step::Leave(index) => on_path[index] = false,
+            Step::Enter(node, parent) => {
+                if on_path[node.index()] {
+                    return Err(GltfError::NodeCycle(node.index()));
+                }
+                if instances.len() >= MAX_NODE_INSTANCES {
+                    return Err(GltfError::TooManyNodes {
+                        limit: MAX_NODE_INSTANCES,
+                    });
+                }
+                on_path[node.index()] = true;
+                let matrix = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+                stack.push(Step::Leave(node.index()));
+                let children: Vec<Node> = node.children().collect();
+                stack.extend(children.into_iter().rev().map(|c| Step::Enter(c, matrix)));
+                instances.push((node, matrix));
+            }
+        }
+    }
+    Ok(instances)
+}

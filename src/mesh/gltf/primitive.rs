@@ -1,0 +1,269 @@
+//! One glTF primitive read into welded triangles in the model's space.
+
+use std::collections::HashMap;
+
+use ::gltf::accessor::{DataType, Dimensions};
+use ::gltf::mesh::Mode;
+use ::gltf::{Accessor, Primitive, Semantic};
+use glam::{Mat3, Mat4, Vec3};
+
+use super::accessor::check_accessor;
+use super::error::GltfError;
+use super::warning::ImportWarning;
+use crate::mesh::ModelGeometry;
+
+/// What became of a primitive.
+#[derive(Debug)]
+pub enum PrimitiveRead {
+    /// Its triangles, moved by the node transform.
+    Triangles(ModelGeometry),
+    /// Not drawn, and why.
+    Skipped(ImportWarning),
+}
+
+/// Reads `primitive` (named `label` in messages) from `buffers` and moves it by `transform`,
+/// the node's model-space matrix. Triangle strips and fans become triangle lists; a transform
+/// that mirrors (negative determinant) has its triangles' winding reversed, so fronts stay fronts.
+pub fn read_primitive(
+    primitive: &Primitive,
+    label: &str,
+    buffers: &[Vec<u8>],
+    transform: Mat4,
+) -> Result<PrimitiveRead, GltfError> {
+    let mode_name = match primitive.mode() {
+        Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan => None,
+        Mode::Points => Some("points"),
+        Mode::Lines => Some("lines"),
+        Mode::LineLoop => Some("a line loop"),
+        Mode::LineStrip => Some("a line strip"),
+    };
+    if let Some(mode) = mode_name {
+        return Ok(PrimitiveRead::Skipped(ImportWarning::NotTriangles {
+            primitive: label.to_string(),
+            mode,
+        }));
+    }
+    let accessor_error =
+        |accessor: &Accessor, role: &'static str, reason: String| GltfError::Accessor {
+            primitive: label.to_string(),
+            accessor: accessor.index(),
+            role,
+            reason,
+        };
+    let Some(position_accessor) = primitive.get(&Semantic::Positions) else {
+        return Ok(unreadable(label, "it has no POSITION attribute"));
+    };
+    if position_accessor.view().is_none() && position_accessor.sparse().is_none() {
+        return Ok(unreadable(
+            label,
+            "its positions are in no buffer view (compressed by an extension?)",
+        ));
+    }
+    if position_accessor.data_type() != DataType::F32 || position_accessor.normalized() {
+        return Ok(unreadable(
+            label,
+            "its positions are not 32-bit floats (quantized by an extension?)",
+        ));
+    }
+    check_accessor(
+        &position_accessor,
+        &[DataType::F32],
+        Dimensions::Vec3,
+        buffers,
+    )
+    .map_err(|reason| accessor_error(&position_accessor, "POSITION", reason))?;
+    let normal_accessor = primitive.get(&Semantic::Normals);
+    if let Some(accessor) = &normal_accessor {
+        check_accessor(accessor, &[DataType::F32], Dimensions::Vec3, buffers)
+            .map_err(|reason| accessor_error(accessor, "NORMAL", reason))?;
+        if accessor.count() != position_accessor.count() {
+            return Err(accessor_error(
+                accessor,
+                "NORMAL",
+                format!(
+                    "{} normals for {} positions",
+                    accessor.count(),
+                    position_accessor.count()
+                ),
+            ));
+        }
+    }
+    if let Some(accessor) = primitive.indices() {
+        check_accessor(
+            &accessor,
+            &[DataType::U8, DataType::U16, DataType::U32],
+            Dimensions::Scalar,
+            buffers,
+        )
+        .map_err(|reason| accessor_error(&accessor, "indices", reason))?;
+    }
+
+    let reader = primitive.reader(|buffer| buffers.get(buffer.index()).map(Vec::as_slice));
+    let unread = |accessor: &Accessor, role| {
+        accessor_error(accessor, role, "its bytes could not be read".into())
+    };
+    let positions: Vec<Vec3> = reader
+        .read_positions()
+        .ok_or_else(|| unread(&position_accessor, "POSITION"))?
+        .map(Vec3::from)
+        .collect();
+    let normals: Option<Vec<Vec3>> = match &normal_accessor {
+        Some(accessor) => Some(
+            reader
+                .read_normals()
+                .ok_or_else(|| unread(accessor, "NORMAL"))?
+                .map(Vec3::from)
+                .collect(),
+        ),
+        None => None,
+    };
+    let order: Vec<u32> = match primitive.indices() {
+        Some(accessor) => reader
+            .read_indices()
+            .ok_or_else(|| unread(&accessor, "indices"))?
+            .into_u32()
+            .collect(),
+        None => (0..positions.len() as u32).collect(),
+    };
+    if let Some(&index) = order.iter().find(|&&i| i as usize >= positions.len()) {
+        return Err(GltfError::IndexOutOfRange {
+            primitive: label.to_string(),
+            index,
+            vertices: positions.len(),
+        });
+    }
+    let mut triangles = assemble(primitive.mode(), &order);
+
+    let positions: Vec<Vec3> = positions
+        .iter()
+        .map(|&p| transform.transform_point3(p))
+        .collect();
+    if positions.iter().any(|p| !p.is_finite()) {
+        return Err(GltfError::NonFinite {
+            primitive: label.to_string(),
+        });
+    }
+    let linear = Mat3::from_mat4(transform);
+    if linear.determinant() < 0.0 {
+        for t in &mut triangles {
+            t.swap(1, 2);
+        }
+    }
+    let normals = normals.and_then(|normals| transform_normals(&normals, linear));
+    Ok(PrimitiveRead::Triangles(weld(
+        &positions,
+        &triangles,
+        normals.as_deref(),
+    )))
+}
+
+fn unreadable(label: &str, reason: &str) -> PrimitiveRead {
+    PrimitiveRead::Skipped(ImportWarning::UnreadablePositions {
+        primitive: label.to_string(),
+        reason: reason.to_string(),
+    })
+}
+
+/// Triangles of `order` (vertex indices) drawn in `mode`, as the glTF specification defines
+/// them: lists take three at a time (a remainder is ignored); strip triangle i is
+/// (i, i+1+i%2, i+2−i%2); fan triangle i is (i+1, i+2, 0).
+fn assemble(mode: Mode, order: &[u32]) -> Vec<[u32; 3]> {
+    match mode {
+        Mode::TriangleStrip => (0..order.len().saturating_sub(2))
+            .map(|i| [order[i], order[i + 1 + i % 2], order[i + 2 - i % 2]])
+            .collect(),
+        Mode::TriangleFan => (0..order.len().saturating_sub(2))
+            .map(|i| [order[i + 1], order[i + 2], order[0]])
+            .collect(),
+        _ => order.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+    }
+}
+
+/// Normals moved by the inverse transpose of `linear`; `None` when the transform is singular or
+/// a normal is zero or not finite (normals are then computed from the faces, as for OBJ).
+fn transform_normals(normals: &[Vec3], linear: Mat3) -> Option<Vec<Vec3>> {
+    if linear.determinant() == 0.0 {
+        return None;
+    }
+    let normal_matrix = linear.inverse().transpose();
+    normals
+        .iter()
+        .map(|&n| {
+            let moved = (normal_matrix * n).normalize_or_zero();
+            (moved != Vec3::ZERO && moved.is_finite()).then_some(moved)
+        })
+        .collect()
+}
+
+/// Merges vertices at bit-identical positions, so that computed normals smooth across the seams
+/// glTF exporters split vertices at; the file's normals, when given, stay with each corner.
+fn weld(positions: &[Vec3], triangles: &[[u32; 3]], normals: Option<&[Vec3]>) -> ModelGeometry {
+    let mut welded: Vec<Vec3> = Vec::with_capacity(positions.len());
+    let mut index_of: HashMap<[u32; 3], u32> = HashMap::with_capacity(positions.len());
+    let remap: Vec<u32> = positions
+        .iter()
+        .map(|p| {
+            *index_of
+                .entry(p.to_array().map(f32::to_bits))
+                .or_insert_with(|| {
+                    welded.push(*p);
+                    welded.len() as u32 - 1
+                })
+        })
+        .collect();
+    ModelGeometry {
+        positions: welded,
+        triangles: triangles
+            .iter()
+            .map(|t| t.map(|i| remap[i as usize]))
+            .collect(),
+        corner_normals: normals.map(|normals| {
+            triangles
+                .iter()
+                .map(|t| t.map(|i| normals[i as usize]))
+                .collect()
+        }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strips_alternate_winding_and_fans_turn_about_the_first_vertex() {
+        let order = [0, 1, 2, 3, 4];
+        assert_eq!(
+            assemble(Mode::TriangleStrip, &order),
+            vec![[0, 1, 2], [1, 3, 2], [2, 3, 4]]
+        );
+        assert_eq!(
+            assemble(Mode::TriangleFan, &order),
+            vec![[1, 2, 0], [2, 3, 0], [3, 4, 0]]
+        );
+        assert_eq!(assemble(Mode::Triangles, &order), vec![[0, 1, 2]]);
+        assert!(assemble(Mode::TriangleStrip, &[0, 1]).is_empty());
+    }
+
+    #[test]
+    fn welding_merges_equal_positions_and_keeps_corner_normals() {
+        let positions = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::X, Vec3::Y, Vec3::ONE];
+        let normals = [Vec3::Z, Vec3::Z, Vec3::Z, Vec3::X, Vec3::X, Vec3::X];
+        let geometry = weld(&positions, &[[0, 1, 2], [3, 5, 4]], Some(&normals));
+        assert_eq!(geometry.positions.len(), 4);
+        assert_eq!(geometry.triangles, vec![[0, 1, 2], [1, 3, 2]]);
+        let corners = geometry.corner_normals.expect("normals");
+        assert_eq!(corners[1], [Vec3::X; 3]);
+    }
+
+    #[test]
+    fn normals_follow_a_non_uniform_scale_by_the_inverse_transpose() {
+        // A 45° slope scaled 2× along X: its normal tilts toward the steeper side.
+        let n = Vec3::new(1.0, 1.0, 0.0).normalize();
+        let moved = transform_normals(&[n], Mat3::from_diagonal(Vec3::new(2.0, 1.0, 1.0)))
+            .expect("invertible");
+        assert!(moved[0].distance(Vec3::new(0.5, 1.0, 0.0).normalize()) < 1e-6);
+        assert!(transform_normals(&[n], Mat3::from_diagonal(Vec3::new(0.0, 1.0, 1.0))).is_none());
+        assert!(transform_normals(&[Vec3::ZERO], Mat3::IDENTITY).is_none());
+    }
+}

@@ -1,0 +1,18 @@
+//! The Z-buffer: one rasterizer (`zbuffer`) hands covered pixels, eight at a time
+//! (`fragments`), to a shader; Gouraud lights the vertices and interpolates the colour, Phong
+//! interpolates the normal and lights every pixel.
+
+mod coverage;
+mod fragments;
+mod gouraud;
+mod phong;
+mod zbuffer;
+
+pub(crate) use coverage::raster_coverage;
+pub(crate) use gouraud::render_gouraud;
+pub(crate) use phong::render_phong;
+#[cfg(test)]
+pub(crate) use zbuffer::coverage_counts;
+
+#[cfg(test)]
+mod tests;

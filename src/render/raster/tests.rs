@@ -1,0 +1,247 @@
+//! The rasterizer's invariants, checked below the shaders: watertight coverage with the
+//! top-left rule, near-plane clipping and the depth it keeps, and strips that join into the
+//! whole image.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use glam::{Affine3A, Quat, Vec3};
+
+use super::fragments::Fragments;
+use super::zbuffer::{coverage_counts, draw};
+use super::{render_gouraud, render_phong};
+use crate::mesh::{FaceList, with_normals};
+use crate::render::simd::V3;
+use crate::render::{Algorithm, Frame, Progress, RenderOptions, Renderer, View};
+use crate::scene::{Camera, Material, Scene};
+use crate::world::{World, WorldObject};
+
+/// Parses a scene from TOML text (panics with the error: the tests' scenes are valid).
+fn scene(toml: &str) -> Scene {
+    crate::scene::from_toml_str(toml, Path::new("test.toml")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Builds the world of `scene` with OBJ paths relative to the crate root.
+fn world(scene: &Scene) -> World {
+    World::build(scene, Path::new(env!("CARGO_MANIFEST_DIR"))).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The default scene file shipped in scenes/.
+fn default_scene() -> Scene {
+    crate::scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/default.toml"))
+        .expect("default.toml")
+}
+
+/// A world holding one flat face split into `segments`² quads, rotated about the view axis.
+fn tessellated_square(segments: u32, angle_degrees: f32) -> World {
+    let mut face = FaceList::default();
+    face.quad(
+        Vec3::new(-1.5, -1.5, 0.0),
+        Vec3::X * 3.0,
+        Vec3::Y * 3.0,
+        segments,
+    );
+    let mesh = with_normals(&face.positions, &face.triangles, false).transformed(
+        Affine3A::from_quat(Quat::from_rotation_z(angle_degrees.to_radians())),
+    );
+    let bounds = mesh.bounding_sphere();
+    World {
+        objects: vec![WorldObject {
+            mesh,
+            material: Material::default(),
+            bounds,
+        }],
+        lights: vec![],
+        ambient: 1.0,
+        background: Vec3::ZERO,
+        max_depth: 0,
+        falloff: Default::default(),
+    }
+}
+
+/// Whether `p` is inside the convex polygon `poly` (either winding) by at least `margin` pixels.
+fn inside_by(poly: &[glam::Vec2], p: glam::Vec2, margin: f32) -> bool {
+    let n = poly.len();
+    let signed: Vec<f32> = (0..n)
+        .map(|i| {
+            let (a, b) = (poly[i], poly[(i + 1) % n]);
+            let e = b - a;
+            (e.x * (p.y - a.y) - e.y * (p.x - a.x)) / e.length()
+        })
+        .collect();
+    signed.iter().all(|&d| d > margin) || signed.iter().all(|&d| d < -margin)
+}
+
+#[test]
+fn a_finely_tessellated_face_covers_every_pixel_exactly_once() {
+    for (segments, angle) in [(16, 17.3), (33, 41.0), (7, 0.0)] {
+        let world = tessellated_square(segments, angle);
+        let camera = Camera {
+            position: Vec3::new(0.0, 0.0, 5.0),
+            ..Default::default()
+        };
+        let view = View::new(&camera, 160, 120);
+        let counts = coverage_counts(&world, &view);
+        let corners: Vec<glam::Vec2> = [(-1.5, -1.5), (1.5, -1.5), (1.5, 1.5), (-1.5, 1.5)]
+            .iter()
+            .map(|&(x, y)| {
+                let p = Quat::from_rotation_z(angle.to_radians()) * Vec3::new(x, y, 0.0);
+                view.clip_to_pixel(view.to_clip(p))
+            })
+            .collect();
+        let (mut inside, mut total) = (0, 0);
+        for y in 0..view.height {
+            for x in 0..view.width {
+                let count = counts[(y * view.width + x) as usize];
+                let centre = glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+                assert!(
+                    count <= 1,
+                    "pixel ({x}, {y}) written {count} times: a double write on a shared edge"
+                );
+                if inside_by(&corners, centre, 1e-3) {
+                    assert_eq!(
+                        count, 1,
+                        "pixel ({x}, {y}) inside the face was never written: a crack"
+                    );
+                    inside += 1;
+                }
+                if !inside_by(&corners, centre, -1e-3) {
+                    assert_eq!(count, 0, "pixel ({x}, {y}) outside the face was written");
+                }
+                total += count;
+            }
+        }
+        assert!(inside > 3000, "the face covers many pixels ({inside})");
+        assert!(total >= inside);
+    }
+}
+
+#[test]
+fn a_closed_icosahedron_covers_each_inner_pixel_exactly_twice() {
+    // Front and back faces both cover each pixel inside the silhouette: no more, no fewer.
+    let scene = scene(
+        r#"
+[camera]
+position = [0.3, 0.2, 4.0]
+[[object]]
+type = "icosahedron"
+radius = 1.0
+subdivisions = 3
+"#,
+    );
+    let world = world(&scene);
+    let view = View::new(&scene.camera, 120, 100);
+    let counts = coverage_counts(&world, &view);
+    let twice = counts.iter().filter(|&&c| c == 2).count();
+    assert!(
+        counts.iter().all(|&c| c == 0 || c == 2),
+        "some pixel was covered once or three times"
+    );
+    assert!(twice > 1500, "the icosahedron covers many pixels ({twice})");
+}
+
+#[test]
+fn a_camera_inside_a_box_sees_its_inner_walls_at_the_right_depth() {
+    // The camera sits inside a 4×3×5 box, near one wall, looking toward a corner: every wall
+    // triangle behind the camera must be clipped at the near plane, and every pixel must show the
+    // wall that the primary ray through its centre hits first.
+    let toml = r#"
+background = [1.0, 0.0, 1.0]
+[camera]
+position = [0.5, 0.2, 1.9]
+target = [1.5, 1.0, -2.0]
+fov = 100.0
+[[light]]
+position = [0.0, 0.0, 0.0]
+[[object]]
+type = "box"
+size = [4.0, 3.0, 5.0]
+material = { color = [0.5, 0.5, 0.5] }
+"#;
+    let scene = scene(toml);
+    let mut frame = Frame::default();
+    let world = Arc::new(world(&scene));
+    Renderer::new(RenderOptions::new(Algorithm::Phong, 64, 48))
+        .render(&world, &scene.camera, &Progress::new(), &mut frame)
+        .expect("render");
+    let half = Vec3::new(2.0, 1.5, 2.5);
+    let view = View::new(&scene.camera, 64, 48);
+    for y in 0..48 {
+        for x in 0..64 {
+            let c = frame.pixel(x, y);
+            assert!(c.is_finite(), "pixel ({x}, {y}) is {c}");
+            assert_ne!(
+                c,
+                Vec3::new(1.0, 0.0, 1.0),
+                "pixel ({x}, {y}) shows the background: a hole"
+            );
+        }
+    }
+    // Depth check against the analytic exit distance of each ray from the box.
+    let normals: Vec<&[Vec3]> = world.objects.iter().map(|o| &o.mesh.normals[..]).collect();
+    let progress = Progress::new();
+    let mut drawn = vec![Vec3::NAN; 64 * 48];
+    let write_depth = |fragments: &Fragments, row: &mut [Vec3]| {
+        let depth = fragments.depth;
+        fragments.write(V3::new(depth, depth, depth), row)
+    };
+    draw(&world, &view, &progress, &normals, write_depth, &mut drawn).expect("draw");
+    let depths: Vec<f32> = drawn.iter().map(|d| d.x).collect();
+    for y in 0..48u32 {
+        for x in 0..64u32 {
+            let d = view.ray_direction(x as f32 + 0.5, y as f32 + 0.5);
+            let o = view.eye;
+            let t = [0, 1, 2]
+                .iter()
+                .map(|&k| {
+                    if d[k] > 0.0 {
+                        (half[k] - o[k]) / d[k]
+                    } else {
+                        (-half[k] - o[k]) / d[k]
+                    }
+                })
+                .fold(f32::INFINITY, f32::min);
+            let expected = t * d.dot(view.forward);
+            let got = depths[(y * 64 + x) as usize];
+            assert!(
+                (got - expected).abs() < 1e-3 * expected,
+                "pixel ({x}, {y}): depth {got}, expected {expected}"
+            );
+        }
+    }
+}
+
+#[test]
+fn strips_rendered_separately_join_into_the_whole_image() {
+    // Large and supersampled images are rendered in horizontal strips; a strip must be exactly
+    // the same rows of the whole render.
+    let scene = default_scene();
+    let world = world(&scene);
+    let whole = View::new(&scene.camera, 160, 97);
+    let progress = Progress::new();
+    for algorithm in [Algorithm::Gouraud, Algorithm::Phong] {
+        let draw = |view: &View| {
+            let mut out = vec![Vec3::NAN; view.width as usize * view.height as usize];
+            match algorithm {
+                Algorithm::Gouraud => render_gouraud(&world, view, &progress, &mut out),
+                _ => render_phong(&world, view, &progress, &mut out),
+            }
+            .expect("render");
+            out
+        };
+        let reference = draw(&whole);
+        let mut joined = Vec::new();
+        for (first, rows) in [(0, 40), (40, 1), (41, 56)] {
+            joined.extend(draw(&whole.rows(first, rows)));
+        }
+        let differing = reference
+            .iter()
+            .zip(&joined)
+            .filter(|(a, b)| a != b)
+            .count();
+        assert_eq!(
+            differing, 0,
+            "{algorithm}: {differing} pixels differ between strips and the whole"
+        );
+    }
+}

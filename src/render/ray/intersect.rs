@@ -1,0 +1,133 @@
+//! Ray/primitive intersection: triangle (Möller–Trumbore with a precomputed normal), sphere and
+//! axis-aligned box. Every test accepts a hit only for t strictly inside (t_min, t_max).
+
+use glam::{Vec3, Vec3A};
+
+use super::half_line::Ray;
+
+/// A ray is treated as parallel to a triangle's plane when |cos| of its angle with the plane's
+/// normal is at most this: the hit point would be numerically meaningless.
+pub(crate) const PARALLEL_COS: f32 = 1.0e-6;
+
+/// A triangle prepared for intersection: one 64-byte cache line.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Triangle {
+    /// First vertex.
+    pub v0: Vec3A,
+    /// Edge v1 − v0.
+    pub e1: Vec3A,
+    /// Edge v2 − v0.
+    pub e2: Vec3A,
+    /// Geometric normal e1 × e2, not normalised (its length is twice the area).
+    pub n: Vec3A,
+}
+
+/// Where a ray meets a triangle: distance and the barycentric weights of v1 (`u`) and v2 (`v`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TriangleHit {
+    /// Ray parameter of the hit (a distance for a unit direction).
+    pub t: f32,
+    /// Weight of the second vertex, in [0, 1].
+    pub u: f32,
+    /// Weight of the third vertex, in [0, 1]; u + v ≤ 1.
+    pub v: f32,
+}
+
+impl Triangle {
+    /// The triangle with corners `a`, `b`, `c` (either winding: both sides are hit).
+    #[inline]
+    pub fn new(a: Vec3, b: Vec3, c: Vec3) -> Triangle {
+        let (a, b, c) = (Vec3A::from(a), Vec3A::from(b), Vec3A::from(c));
+        let (e1, e2) = (b - a, c - a);
+        Triangle {
+            v0: a,
+            e1,
+            e2,
+            n: e1.cross(e2),
+        }
+    }
+
+    /// The nearest hit of `ray` with t in (t_min, t_max). Points on edges and vertices count as
+    /// inside; degenerate triangles and rays parallel to the plane never hit.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<TriangleHit> {
+        // Cramer's rule on o + t·d = v0 + u·e1 + v·e2, with det = −d·(e1 × e2).
+        let det = -ray.dir.dot(self.n);
+        // Parallel (or degenerate, n = 0): |d·n| ≤ ε·|d|·|n|, squared to avoid the roots.
+        if det * det
+            <= PARALLEL_COS * PARALLEL_COS * self.n.length_squared() * ray.dir.length_squared()
+        {
+            return None;
+        }
+        let inv_det = 1.0 / det;
+        let to_origin = ray.origin - self.v0;
+        let t = to_origin.dot(self.n) * inv_det;
+        if !(t > t_min && t < t_max) {
+            return None;
+        }
+        let q = to_origin.cross(ray.dir);
+        let u = self.e2.dot(q) * inv_det;
+        let v = -self.e1.dot(q) * inv_det;
+        // Negative barycentric ⇒ the point lies outside.
+        if u < 0.0 || v < 0.0 || u + v > 1.0 {
+            return None;
+        }
+        Some(TriangleHit { t, u, v })
+    }
+}
+
+/// Where a ray enters and leaves a sphere (`t_near` ≤ `t_far`, either may be negative), or `None`
+/// when the line misses it. A tangent line enters and leaves at the same t. The renderer culls
+/// with [`segment_meets_sphere`], which needs no root; the tests keep this as the exact answer.
+#[cfg(test)]
+pub fn ray_sphere(ray: &Ray, center: Vec3, radius: f32) -> Option<(f32, f32)> {
+    let oc = ray.origin - Vec3A::from(center);
+    let a = ray.dir.length_squared();
+    let half_b = oc.dot(ray.dir);
+    // c computed as (|oc| − r)(|oc| + r) loses less precision far from the sphere.
+    let len = oc.length();
+    let c = (len - radius) * (len + radius);
+    let disc = half_b * half_b - a * c;
+    if disc < 0.0 || a == 0.0 {
+        return None;
+    }
+    let root = disc.sqrt();
+    // The numerically stable pair of roots: q = −(b/2 + sign(b/2)·√disc).
+    let q = -(half_b + root.copysign(half_b));
+    let (t0, t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
+    Some((t0.min(t1), t0.max(t1)))
+}
+
+/// Whether the segment [t_min, t_max] of `ray` (unit direction) touches the ball: the point of
+/// the segment nearest the centre lies within `radius`. No root or division, so it is a cheap
+/// first cull.
+#[inline]
+pub fn segment_meets_sphere(ray: &Ray, center: Vec3, radius: f32, t_min: f32, t_max: f32) -> bool {
+    let to_center = Vec3A::from(center) - ray.origin;
+    let along = to_center.dot(ray.dir);
+    let t = if along < t_min {
+        t_min
+    } else if along > t_max {
+        t_max
+    } else {
+        along
+    };
+    // t is finite whenever t_min is: an infinite t_max is never below `along`.
+    let nearest = ray.origin + ray.dir * t;
+    (Vec3A::from(center) - nearest).length_squared() <= radius * radius
+}
+
+/// The entry distance of `ray` into the box [lo, hi] clipped to [t_min, t_max], or `None`
+/// when the box is missed within that range (slab test).
+#[inline]
+pub fn ray_box(ray: &Ray, lo: Vec3A, hi: Vec3A, t_min: f32, t_max: f32) -> Option<f32> {
+    let t1 = (lo - ray.origin) * ray.inv_dir;
+    let t2 = (hi - ray.origin) * ray.inv_dir;
+    // Plain comparisons rather than f32::max/min: no NaN can arise (inv_dir is finite), and
+    // they compile to single instructions in this, the hottest, loop.
+    let near = t1.min(t2).max_element();
+    let far = t1.max(t2).min_element();
+    let near = if near > t_min { near } else { t_min };
+    let far = if far < t_max { far } else { t_max };
+    (near <= far).then_some(near)
+}

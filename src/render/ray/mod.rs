@@ -1,0 +1,19 @@
+//! The Whitted ray tracer: rays (`half_line`, `packet`), their intersection tests, each mesh's
+//! BVH (`bvh`, built by `bvh_build`), the scene's acceleration structure (`accel`), and the
+//! tracer itself.
+
+mod accel;
+mod bvh;
+mod bvh_build;
+mod half_line;
+mod intersect;
+mod packet;
+mod primary;
+mod tracer;
+
+pub(crate) use accel::SceneAccel;
+pub(crate) use primary::primary_coverage;
+pub(crate) use tracer::trace_into;
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,52 @@
+//! Primary rays: the packet through eight pixel centres, which the tracer shades, and coverage
+//! for alpha, which asks only whether each of those rays hits anything.
+
+use rayon::prelude::*;
+
+use super::accel::SceneAccel;
+use super::packet::RayPacket;
+use crate::render::camera::{NEAR, View};
+use crate::render::progress::{Cancelled, Progress};
+use crate::render::simd::{F32x8, V3, WIDTH};
+
+/// The primary rays of `view` through continuous pixel coordinates (`x`, `y`) of each lane:
+/// from the eye, unit directions, starting where the rasterizer's near plane cuts each ray, so
+/// that both see the same.
+#[inline]
+pub fn primary_packet(view: &View, x: F32x8, y: F32x8) -> RayPacket {
+    let dir = view.pixel_direction(x, y).normalize_or_zero();
+    let t_min = F32x8::splat(NEAR) / dir.dot(V3::splat(view.forward));
+    RayPacket::new(V3::splat(view.eye), dir, t_min)
+}
+
+/// Writes 1 into `covered` where the primary ray through the pixel centre of `view` hits a
+/// surface and 0 where it misses (`view.width`×`view.height` values). Each lane of a packet
+/// finds the hit its ray would find alone, so the tracer's 4×2 packets and these rows of eight
+/// agree on every pixel.
+pub fn primary_coverage(
+    accel: &SceneAccel,
+    view: &View,
+    progress: &Progress,
+    covered: &mut [f32],
+) -> Result<(), Cancelled> {
+    let width = view.width as usize;
+    debug_assert_eq!(covered.len(), width * view.height as usize);
+    covered
+        .par_chunks_mut(width)
+        .enumerate()
+        .try_for_each(|(y, row)| {
+            progress.check()?;
+            let y = F32x8::splat(y as f32 + 0.5);
+            for (left, out) in (0..width).step_by(WIDTH).zip(row.chunks_mut(WIDTH)) {
+                // Lanes past the right edge repeat the last pixel and are not written.
+                let x = std::array::from_fn(|k| (left + k).min(width - 1) as f32 + 0.5);
+                let packet = primary_packet(view, F32x8::from(x), y);
+                let hits = accel.intersect_packet(&packet).hit().move_mask();
+                for (k, c) in out.iter_mut().enumerate() {
+                    *c = (hits >> k & 1) as f32;
+                }
+            }
+            progress.advance(1);
+            Ok(())
+        })
+}

@@ -1,0 +1,230 @@
+//! Backward (Whitted) ray tracing: one primary ray per pixel centre, the shared lighting function
+//! at the nearest hit with shadow rays deciding which lights count, and mirror reflection
+//! recursing to a maximum depth.
+//!
+//! Primary rays go in packets of 4×2 neighbouring pixels: traced through the BVH together and
+//! lit together, eight lanes at a time. Shadow and reflection rays, which scatter, go one by
+//! one. Pairs of rows are traced in parallel; every pixel depends only on its own rays, so the
+//! image is the same for any number of threads.
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use super::accel::SceneAccel;
+use super::half_line::Ray;
+use super::primary::primary_packet;
+use crate::render::camera::View;
+use crate::render::materials::ObjectMaterials;
+use crate::render::options::RenderOptions;
+use crate::render::progress::{Cancelled, Progress};
+use crate::render::shading::Lighting;
+use crate::render::simd::{F32x8, V3, WIDTH};
+use crate::render::stats::RayCounts;
+use crate::scene::Light;
+use crate::world::World;
+
+/// Deepest reflection recursion traced, whatever the options ask: the limit scene files
+/// already have, which also bounds the recursion's stack use.
+pub const MAX_REFLECTION_DEPTH: u32 = crate::scene::MAX_DEPTH;
+
+/// Primary rays are traced in packets of [`WIDTH`]: this many columns …
+const PACKET_COLUMNS: usize = 4;
+/// … by this many rows.
+const PACKET_ROWS: usize = WIDTH / PACKET_COLUMNS;
+
+/// Traces `world` through `view` into `out` (`view.width`×`view.height` pixels), with an
+/// acceleration structure built from `world`; returns the rays cast.
+pub fn trace_into(
+    accel: &SceneAccel,
+    world: &World,
+    view: &View,
+    options: &RenderOptions,
+    progress: &Progress,
+    out: &mut [Vec3],
+) -> Result<RayCounts, Cancelled> {
+    debug_assert_eq!(accel.objects.len(), world.objects.len());
+    let tracer = Tracer {
+        world,
+        accel,
+        lighting: Lighting::new(world),
+        materials: ObjectMaterials::new(world),
+        shadows: options.shadows,
+        max_depth: options
+            .max_depth
+            .unwrap_or(world.max_depth)
+            .min(MAX_REFLECTION_DEPTH),
+    };
+    let width = view.width as usize;
+    debug_assert_eq!(out.len(), width * view.height as usize);
+    out.par_chunks_mut(width * PACKET_ROWS)
+        .enumerate()
+        .map(|(pair, rows)| {
+            progress.check()?;
+            let mut stats = RayCounts::default();
+            let (top, height) = (pair * PACKET_ROWS, rows.len() / width);
+            for left in (0..width).step_by(PACKET_COLUMNS) {
+                // Lane k is pixel (left + k % 4, top + k / 4); lanes past the image's right
+                // edge or last row repeat a pixel inside it and are not written.
+                let column = |k: usize| (left + k % PACKET_COLUMNS).min(width - 1);
+                let row = |k: usize| (k / PACKET_COLUMNS).min(height - 1);
+                let real = (0..WIDTH)
+                    .filter(|k| left + k % PACKET_COLUMNS < width && k / PACKET_COLUMNS < height)
+                    .fold(0u32, |lanes, k| lanes | 1 << k);
+                let pixel = std::array::from_fn(|k| (column(k) as u32, (top + row(k)) as u32));
+                let colors = tracer.trace_primary(view, pixel, real, &mut stats);
+                for k in (0..WIDTH).filter(|k| real & 1 << k != 0) {
+                    rows[row(k) * width + column(k)] = colors[k];
+                }
+            }
+            progress.advance(height as u64);
+            Ok(stats)
+        })
+        .try_reduce(RayCounts::default, |a, b| Ok(a + b))
+}
+
+/// What every ray of one render shares.
+struct Tracer<'a> {
+    world: &'a World,
+    accel: &'a SceneAccel,
+    lighting: Lighting<'a>,
+    materials: ObjectMaterials,
+    shadows: bool,
+    max_depth: u32,
+}
+
+/// The surface at a ray's hit.
+struct Surface {
+    /// The hit point, world units.
+    p: Vec3,
+    /// The interpolated shading normal, unit length (zero on a degenerate triangle).
+    n: Vec3,
+    /// Where secondary rays start: `p` lifted off the surface, on the side the ray came from.
+    origin: Vec3,
+}
+
+impl Tracer<'_> {
+    /// The surface where a ray along `d` hits triangle `triangle` of object `object` at
+    /// barycentrics (u, v): position and normal interpolated exactly as the Phong fragment
+    /// stage interpolates them.
+    fn surface(&self, object: u32, triangle: u32, u: f32, v: f32, d: Vec3) -> Surface {
+        let mesh = &self.world.objects[object as usize].mesh;
+        let [a, b, c] = mesh.triangles[triangle as usize].map(|k| k as usize);
+        let w = [1.0 - u - v, u, v];
+        let p = mesh.positions[a] * w[0] + mesh.positions[b] * w[1] + mesh.positions[c] * w[2];
+        let n = (mesh.normals[a] * w[0] + mesh.normals[b] * w[1] + mesh.normals[c] * w[2])
+            .normalize_or_zero();
+        // The geometric normal, turned toward where the ray came from; the offset is scaled to
+        // the scene.
+        let [pa, pb, pc] = [a, b, c].map(|k| mesh.positions[k]);
+        let mut ng = (pb - pa).cross(pc - pa).normalize_or_zero();
+        if ng.dot(d) > 0.0 {
+            ng = -ng;
+        }
+        Surface {
+            p,
+            n,
+            origin: p + ng * self.accel.epsilon,
+        }
+    }
+
+    /// Colour of the eight primary rays through the centres of `pixel` (column, row); lanes
+    /// whose bit is not set in `real` are computed but not counted.
+    fn trace_primary(
+        &self,
+        view: &View,
+        pixel: [(u32, u32); WIDTH],
+        real: u32,
+        stats: &mut RayCounts,
+    ) -> [Vec3; WIDTH] {
+        let x = F32x8::from(pixel.map(|(i, _)| i as f32 + 0.5));
+        let y = F32x8::from(pixel.map(|(_, j)| j as f32 + 0.5));
+        let packet = primary_packet(view, x, y);
+        let dir = packet.dir;
+        stats.primary += real.count_ones() as u64;
+        let hits = self.accel.intersect_packet(&packet);
+        let hit_lanes = hits.hit().move_mask() as u32 & real;
+        let Some(first) = (0..WIDTH).find(|&k| hit_lanes & 1 << k != 0) else {
+            return [self.world.background; WIDTH];
+        };
+        // Lanes without a hit borrow the first hit's surface, so every lane computes with
+        // finite values; their colour is the background.
+        let source = |k: usize| if hit_lanes & 1 << k != 0 { k } else { first };
+        let (objects, triangles) = (hits.object.to_array(), hits.triangle.to_array());
+        let (u, v) = (hits.u.to_array(), hits.v.to_array());
+        let dirs = dir.to_vec3s();
+        let surfaces: [Surface; WIDTH] = std::array::from_fn(|k| {
+            let s = source(k);
+            self.surface(objects[s], triangles[s], u[s], v[s], dirs[k])
+        });
+        let material = self
+            .materials
+            .of_lanes(&std::array::from_fn(|k| objects[source(k)]));
+        let p = V3::gather(&surfaces.each_ref().map(|s| s.p));
+        let n = V3::gather(&surfaces.each_ref().map(|s| s.n));
+        let lit = self
+            .lighting
+            .shade_lanes(p, n, -dir, &material, |_, light, facing| {
+                let wanted = facing.move_mask() as u32 & hit_lanes;
+                let reached: [u32; WIDTH] = std::array::from_fn(|k| {
+                    let lit = wanted & 1 << k != 0
+                        && self.light_reaches(surfaces[k].origin, light, stats);
+                    if lit { u32::MAX } else { 0 }
+                });
+                bytemuck::cast(reached)
+            })
+            .to_vec3s();
+        std::array::from_fn(|k| {
+            if hit_lanes & 1 << k == 0 {
+                return self.world.background;
+            }
+            let s = &surfaces[k];
+            lit[k] + self.reflection(objects[k], s, dirs[k], 0, stats)
+        })
+    }
+
+    /// Colour seen along `ray` beyond `t_min`; `depth` counts reflections so far.
+    fn trace(&self, ray: &Ray, t_min: f32, depth: u32, stats: &mut RayCounts) -> Vec3 {
+        let Some(hit) = self.accel.intersect(ray, t_min, f32::INFINITY) else {
+            return self.world.background;
+        };
+        let d = Vec3::from(ray.dir);
+        let s = self.surface(hit.object, hit.triangle, hit.u, hit.v, d);
+        let material = &self.materials.one[hit.object as usize];
+        let lit = self.lighting.shade(s.p, s.n, -d, material, |_, light| {
+            self.light_reaches(s.origin, light, stats)
+        });
+        lit + self.reflection(hit.object, &s, d, depth, stats)
+    }
+
+    /// Whether `light` reaches a point whose secondary rays start at `origin`: always without
+    /// shadows, else when its shadow ray is unblocked.
+    fn light_reaches(&self, origin: Vec3, light: &Light, stats: &mut RayCounts) -> bool {
+        if !self.shadows {
+            return true;
+        }
+        stats.shadow += 1;
+        !self.accel.occluded(origin, light.position)
+    }
+
+    /// What the mirror of object `object` at surface `s`, hit along `d` by a ray of reflection
+    /// depth `depth`, adds: Kr times the colour of the reflected ray, until the depth limit.
+    fn reflection(
+        &self,
+        object: u32,
+        s: &Surface,
+        d: Vec3,
+        depth: u32,
+        stats: &mut RayCounts,
+    ) -> Vec3 {
+        let reflection = self.world.objects[object as usize].material.reflection;
+        if depth >= self.max_depth || reflection <= 0.0 {
+            return Vec3::ZERO;
+        }
+        // The shading normal, turned toward the viewer as the lighting function does.
+        let n = if s.n.dot(-d) < 0.0 { -s.n } else { s.n };
+        let r = d - 2.0 * n * d.dot(n);
+        stats.reflection += 1;
+        let reflected = Ray::new(s.origin, r.normalize_or(d));
+        reflection * self.trace(&reflected, 0.0, depth + 1, stats)
+    }
+}

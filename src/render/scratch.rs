@@ -1,0 +1,13 @@
+//! Working memory a renderer keeps from frame to frame, so that a render of the same size as the
+//! last allocates nothing for it.
+
+use glam::Vec3;
+
+/// Buffers reused by every render of one [`crate::render::Renderer`].
+#[derive(Debug, Default)]
+pub(super) struct Scratch {
+    /// One strip of the supersampled image, before it is box-filtered into the frame.
+    pub(super) samples: Vec<Vec3>,
+    /// The coverage of that strip's samples (1 covered, 0 not), when alpha is rendered.
+    pub(super) coverage: Vec<f32>,
+}

@@ -1,0 +1,182 @@
+//! Asking the terminal whether it shows 24-bit colour, for when the environment does not say
+//! (plain `ssh` forwards no `COLORTERM`). Two questions, each a terminal may ignore: XTGETTCAP
+//! for the `RGB` and `Tc` capabilities, and DECRQSS for the background just set to a truecolor
+//! value. Primary device attributes (`CSI c`), which every terminal answers, end the wait.
+
+use std::io::{self, IsTerminal, Write};
+use std::os::fd::AsFd;
+use std::time::{Duration, Instant};
+
+use ratatui::crossterm::terminal::{disable_raw_mode, enable_raw_mode, is_raw_mode_enabled};
+use rustix::event::{PollFd, PollFlags, Timespec, poll};
+
+use super::preview::ColorMode;
+use super::term_input::{Decoder, Reply, TermInput};
+
+/// The questions, in order: XTGETTCAP `RGB` and `Tc` (names hex-encoded), a truecolor
+/// background then DECRQSS for the current SGR, a reset, and DA1 as the sentinel.
+pub const QUERY: &[u8] = b"\x1bP+q524742;5463\x1b\\\x1b[48;2;1;2;3m\x1bP$qm\x1b\\\x1b[0m\x1b[c";
+
+/// How long to wait for the sentinel before deciding on what has arrived.
+pub const TIMEOUT: Duration = Duration::from_millis(300);
+
+/// The colour depth the environment states: truecolor for `COLORTERM=truecolor|24bit`,
+/// `None` when it is silent.
+pub fn from_env(colorterm: Option<&str>) -> Option<ColorMode> {
+    colorterm
+        .filter(|v| v.eq_ignore_ascii_case("truecolor") || v.eq_ignore_ascii_case("24bit"))
+        .map(|_| ColorMode::Truecolor)
+}
+
+/// The depth the terminal's `replies` to [`QUERY`] show: truecolor when XTGETTCAP reports
+/// `RGB` or `Tc` as present, or DECRQSS echoes the truecolor background; 256 colours otherwise
+/// (only DA1, or nothing at all).
+pub fn decide(replies: &[Reply]) -> ColorMode {
+    let truecolor = replies.iter().any(|reply| match reply {
+        Reply::Dcs(text) => has_rgb_capability(text) || echoes_truecolor_sgr(text),
+        _ => false,
+    });
+    if truecolor {
+        ColorMode::Truecolor
+    } else {
+        ColorMode::Ansi256
+    }
+}
+
+/// `1+r NAME[=VALUE];…`: a valid XTGETTCAP answer naming `RGB` (524742) or `Tc` (5463).
+fn has_rgb_capability(text: &str) -> bool {
+    text.strip_prefix("1+r").is_some_and(|caps| {
+        caps.split(';').any(|cap| {
+            let name = cap.split('=').next().unwrap_or_default();
+            name.eq_ignore_ascii_case("524742") || name.eq_ignore_ascii_case("5463")
+        })
+    })
+}
+
+/// `1$r … m`: a valid DECRQSS answer whose SGR holds the background set by [`QUERY`], written
+/// with colons or semicolons.
+fn echoes_truecolor_sgr(text: &str) -> bool {
+    text.strip_prefix("1$r")
+        .is_some_and(|sgr| sgr.contains("48:2:1:2:3") || sgr.contains("48;2;1;2;3"))
+}
+
+/// The colour depth to use when no `--color` was given: what `COLORTERM` states, else what the
+/// terminal answers, else 256 colours. Asks only when standard input and output are a terminal;
+/// raw mode is on while it waits and back as it was afterwards.
+pub fn detect() -> ColorMode {
+    if let Some(mode) = from_env(std::env::var("COLORTERM").ok().as_deref()) {
+        return mode;
+    }
+    if !io::stdin().is_terminal() || !io::stdout().is_terminal() {
+        return ColorMode::Ansi256;
+    }
+    let was_raw = is_raw_mode_enabled().unwrap_or(false);
+    if !was_raw && enable_raw_mode().is_err() {
+        return ColorMode::Ansi256;
+    }
+    let replies = ask(TIMEOUT).unwrap_or_default();
+    if !was_raw {
+        let _ = disable_raw_mode();
+    }
+    decide(&replies)
+}
+
+/// Writes [`QUERY`] and collects the replies until DA1 arrives or `timeout` passes.
+fn ask(timeout: Duration) -> io::Result<Vec<Reply>> {
+    let mut out = io::stdout();
+    out.write_all(QUERY)?;
+    out.flush()?;
+    let stdin = io::stdin();
+    let fd = stdin.as_fd();
+    let mut decoder = Decoder::new();
+    let mut decoded = Vec::new();
+    let mut replies = Vec::new();
+    let mut buffer = [0u8; 1024];
+    let deadline = Instant::now() + timeout;
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        if left.is_zero() {
+            return Ok(replies);
+        }
+        let wait = Timespec {
+            tv_sec: left.as_secs() as _,
+            tv_nsec: left.subsec_nanos() as _,
+        };
+        let mut fds = [PollFd::new(&fd, PollFlags::IN)];
+        match poll(&mut fds, Some(&wait)) {
+            Ok(0) => return Ok(replies),
+            Ok(_) => match rustix::io::read(fd, &mut buffer) {
+                Ok(0) => return Ok(replies),
+                Ok(n) => decoder.feed(&buffer[..n], &mut decoded),
+                Err(rustix::io::Errno::INTR | rustix::io::Errno::AGAIN) => continue,
+                Err(e) => return Err(e.into()),
+            },
+            Err(rustix::io::Errno::INTR) => continue,
+            Err(e) => return Err(e.into()),
+        }
+        for input in decoded.drain(..) {
+            if let TermInput::Reply(reply) = input {
+                let sentinel = matches!(reply, Reply::DeviceAttributes(_));
+                replies.push(reply);
+                if sentinel {
+                    return Ok(replies);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The replies a terminal sends for `bytes`.
+    fn replies(bytes: &[u8]) -> Vec<Reply> {
+        let mut decoder = Decoder::new();
+        let mut out = Vec::new();
+        decoder.feed(bytes, &mut out);
+        out.into_iter()
+            .filter_map(|i| match i {
+                TermInput::Reply(r) => Some(r),
+                TermInput::Event(_) => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_terminal_reporting_the_rgb_capability_gets_truecolor() {
+        let answer = replies(b"\x1bP1+r524742=382F382F38\x1b\\\x1bP0+r5463\x1b\\\x1b[?62;22c");
+        assert_eq!(decide(&answer), ColorMode::Truecolor);
+        let tc_only = replies(b"\x1bP0+r524742\x1b\\\x1bP1+r5463\x1b\\\x1b[?1;2c");
+        assert_eq!(decide(&tc_only), ColorMode::Truecolor);
+    }
+
+    #[test]
+    fn a_terminal_echoing_the_background_with_colons_or_semicolons_gets_truecolor() {
+        let colons = replies(b"\x1bP1$r0;48:2::1:2:3m\x1b\\\x1bP1$r48:2:1:2:3m\x1b\\\x1b[?64c");
+        assert_eq!(decide(&colons), ColorMode::Truecolor);
+        let semicolons = replies(b"\x1bP1$r0;48;2;1;2;3m\x1b\\\x1b[?64c");
+        assert_eq!(decide(&semicolons), ColorMode::Truecolor);
+    }
+
+    #[test]
+    fn refusals_only_da1_or_silence_keep_256_colours() {
+        let refused = replies(b"\x1bP0+r524742;5463\x1b\\\x1bP0$r\x1b\\\x1b[?62c");
+        assert_eq!(decide(&refused), ColorMode::Ansi256);
+        // A palette-mapped echo is not truecolor.
+        let mapped = replies(b"\x1bP1$r0;48;5;16m\x1b\\\x1b[?62c");
+        assert_eq!(decide(&mapped), ColorMode::Ansi256);
+        let only_da1 = replies(b"\x1b[?1;2c");
+        assert_eq!(only_da1.len(), 1);
+        assert_eq!(decide(&only_da1), ColorMode::Ansi256);
+        assert_eq!(decide(&[]), ColorMode::Ansi256);
+    }
+
+    #[test]
+    fn the_environment_decides_only_when_it_names_truecolor() {
+        assert_eq!(from_env(Some("truecolor")), Some(ColorMode::Truecolor));
+        assert_eq!(from_env(Some("24BIT")), Some(ColorMode::Truecolor));
+        assert_eq!(from_env(Some("yes")), None);
+        assert_eq!(from_env(None), None);
+    }
+}
