@@ -35,8 +35,10 @@ pub mod render;
 pub mod scene;
 pub mod terminal_image;
 pub mod tui;
+pub mod warnings;
 pub mod world;
 
 pub use render::{Algorithm, Frame, RenderOptions, RenderStats, Renderer};
 pub use scene::Scene;
+pub use warnings::{Warning, warnings};
 pub use world::World;

@@ -38,8 +38,8 @@ pub struct World {
     pub background: glam::Vec3,
     /// Deepest reflection recursion.
     pub max_depth: u32,
-    /// Light attenuation (all zero means none).
-    pub falloff: Falloff,
+    /// Distance attenuation of the lights; `None` means att(d) = 1.
+    pub falloff: Option<Falloff>,
 }
 
 /// Loaded model files (OBJ or glTF) keyed by path, reloaded when the file changes on disk.
@@ -135,11 +135,7 @@ impl World {
                 Shape::Mesh { path, .. } => {
                     let full = base_dir.join(path);
                     let model = cache.get(&full).map_err(|error| match error {
-                        MeshFileError::Obj(message) => SceneError::Obj {
-                            index,
-                            obj: full.clone(),
-                            message,
-                        },
+                        MeshFileError::Obj(error) => SceneError::Obj { index, error },
                         MeshFileError::Gltf(error) => SceneError::Gltf {
                             index,
                             path: full.clone(),
@@ -222,7 +218,7 @@ impl World {
                 ambient: scene.ambient,
                 background: scene.background,
                 max_depth: scene.max_depth,
-                falloff: scene.falloff.unwrap_or_default(),
+                falloff: scene.falloff,
             },
             sources,
             warnings,

@@ -148,3 +148,46 @@ fn absurd_sizes_are_refused_before_any_allocation_with_the_limit_stated() {
         assert!(stderr(&o).contains(needle), "{size}: {}", stderr(&o));
     }
 }
+
+/// Runs `args` in a directory holding `scene.toml` with `contents`; returns (stdout, stderr).
+fn run_on_scene(contents: &str, args: &[&str]) -> (String, String) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    std::fs::write(dir.path().join("scene.toml"), contents).expect("write");
+    let o = rastray(args, dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    (String::from_utf8_lossy(&o.stdout).into_owned(), stderr(&o))
+}
+
+#[test]
+fn render_and_info_print_the_scene_warnings_on_stderr() {
+    let scene = "[camera]\nposition = [0.0, 0.0, 5.0]\n\
+                 [[object]]\ntype = \"box\"\nname = \"seen\"\nsize = [1.0, 1.0, 1.0]\n\
+                 [[object]]\ntype = \"box\"\nname = \"hidden\"\ncenter = [0.0, 0.0, 8.0]\nsize = [1.0, 1.0, 1.0]\n";
+    let expected = "warning: the scene has no lights; only ambient light will show\n\
+                    warning: object[1] \"hidden\" is entirely behind the camera and will not show\n";
+    let render = [
+        "render",
+        "scene.toml",
+        "-a",
+        "gouraud",
+        "-s",
+        "32x24",
+        "-o",
+        "x.png",
+    ];
+    let (stdout, stderr) = run_on_scene(scene, &render);
+    assert_eq!(stderr, expected);
+    assert!(stdout.contains("wrote x.png"), "{stdout}");
+    let (stdout, stderr) = run_on_scene(scene, &["info", "scene.toml"]);
+    assert_eq!(stderr, expected);
+    assert!(stdout.contains("hidden"), "{stdout}");
+}
+
+#[test]
+fn a_scene_without_problems_prints_no_warning() {
+    let (_, stderr) = run_on_scene(
+        &std::fs::read_to_string(scenes().join("default.toml")).expect("default.toml"),
+        &["info", "scene.toml"],
+    );
+    assert_eq!(stderr, "");
+}

@@ -183,3 +183,65 @@ smooth = false
         "front {f} and back {b} differ"
     );
 }
+
+/// Writes `text` as an OBJ file and returns the error loading it.
+fn obj_error(text: &str) -> (rastray::mesh::ObjError, String) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("bad.obj");
+    std::fs::write(&path, text).expect("write");
+    let error = load_obj(&path).expect_err("must be refused");
+    let message = error.to_string();
+    assert!(
+        message.starts_with(&path.display().to_string()),
+        "the file is named: {message}"
+    );
+    (error, message)
+}
+
+#[test]
+fn obj_errors_name_the_file_and_line() {
+    use rastray::mesh::ObjProblem;
+    let (e, m) = obj_error("v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n");
+    assert!(matches!(e.problem, ObjProblem::Malformed(_)), "{m}");
+    assert_eq!(e.line, Some(2), "{m}");
+
+    let (e, m) = obj_error("v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+    assert!(
+        matches!(e.problem, ObjProblem::NonFiniteVertex { vertex: 3 }),
+        "{m}"
+    );
+    assert!(
+        m.contains("bad.obj:3: vertex 3 is not a finite number"),
+        "{m}"
+    );
+
+    let (e, m) = obj_error("v 0 0 0\nv 1 0 0\n# a comment\nf 1 2 9\nv 0 1 0\n");
+    assert!(
+        matches!(e.problem, ObjProblem::MissingVertex { index: 9, count: 3 }),
+        "{m}"
+    );
+    assert!(
+        m.contains("bad.obj:4: a face names vertex 9, but the file has 3 vertices"),
+        "{m}"
+    );
+
+    let (e, m) = obj_error("v 0 0 0\nv 1 0 0\nf -3 1 2\n");
+    assert!(
+        matches!(e.problem, ObjProblem::MissingVertex { index: -3, .. }),
+        "{m}"
+    );
+    assert_eq!(e.line, Some(3));
+
+    let (e, m) = obj_error("v 0 0 0\nv 1 0 0\nl 1 2\n");
+    assert!(matches!(e.problem, ObjProblem::NoFaces), "{m}");
+    assert!(m.ends_with("bad.obj: the file holds no faces"), "{m}");
+
+    let missing = Path::new("/nonexistent/rastray/model.obj");
+    let e = load_obj(missing).expect_err("no such file");
+    assert!(matches!(e.problem, ObjProblem::Io(_)), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("/nonexistent/rastray/model.obj: "),
+        "{e}"
+    );
+}

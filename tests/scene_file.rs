@@ -191,7 +191,12 @@ fn missing_and_malformed_obj_files_name_the_file() {
     let text = format!("{CAMERA}[[object]]\ntype = \"mesh\"\npath = \"broken.obj\"\n");
     let scene = from_toml_str(&text, Path::new("s.toml")).expect("parses");
     let error = rastray::World::build(&scene, dir.path()).expect_err("malformed OBJ");
-    assert!(error.to_string().contains("broken.obj"), "{error}");
+    let message = error.to_string();
+    assert!(
+        message.contains("broken.obj:3: cannot load the OBJ model of object[0]")
+            && message.contains("names vertex 9"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -204,5 +209,106 @@ fn a_scene_too_large_to_tessellate_is_refused_with_the_limit() {
     assert!(
         message.contains("22020096") && message.contains("20000000"),
         "{message}"
+    );
+}
+
+#[test]
+fn out_of_range_messages_state_the_accepted_range() {
+    for (body, message) in [
+        (
+            "ambient = 2.0\n",
+            "`ambient` must be between 0 and 1, got 2",
+        ),
+        (
+            "[camera]\nfov = 180.0\n",
+            "`camera.fov` must be between 0 and 180 degrees (exclusive), got 180",
+        ),
+        (
+            "[[object]]\ntype = \"box\"\nsize = [1.0, 0.0, 1.0]\n",
+            "`object[0].size` width, height and depth must each be a positive finite number at most 1e6, got [1, 0, 1]",
+        ),
+        (
+            "[[object]]\ntype = \"icosahedron\"\nradius = 1.0\nsubdivisions = 9\n",
+            "`object[0].subdivisions` must be between 0 and 8, got 9",
+        ),
+        (
+            "[[light]]\nposition = [0.0, 2e6, 0.0]\n",
+            "`light[0].position` coordinates must each be between -1e6 and 1e6, got [0, 2000000, 0]",
+        ),
+        (
+            "falloff = { linear = -0.5 }\n",
+            "`falloff.linear` must be between 0 and 1e6, got -0.5",
+        ),
+    ] {
+        let (error, m) = refused(body);
+        assert!(m.ends_with(message), "{m}");
+        let SceneError::Invalid { error, .. } = error else {
+            panic!("an out-of-range error: {m}")
+        };
+        assert!(m.contains(&error.path.to_string()), "{m}");
+    }
+}
+
+#[test]
+fn a_key_of_another_shape_is_a_typed_error() {
+    use rastray::scene::{ObjectError, ShapeKind};
+    let stray = ObjectError::Stray {
+        key: "radius",
+        kind: ShapeKind::Box,
+    };
+    let (error, m) = refused("[[object]]\ntype = \"box\"\nsize = [1.0, 1.0, 1.0]\nradius = 2.0\n");
+    assert!(matches!(error, SceneError::Parse { .. }), "{m}");
+    assert!(m.contains(&stray.to_string()), "{m}");
+    let missing = ObjectError::Missing {
+        key: "size",
+        kind: ShapeKind::Prism,
+    };
+    let (_, m) = refused("[[object]]\ntype = \"prism\"\n");
+    assert!(m.contains(&missing.to_string()), "{m}");
+}
+
+#[test]
+fn no_falloff_has_one_form_however_the_file_spells_it() {
+    use rastray::scene::Falloff;
+    let load = |text: &str| from_toml_str(text, Path::new("f.toml")).expect("valid");
+    for spelling in [
+        "",
+        "falloff = { linear = 0.0, quadratic = 0.0 }\n",
+        "falloff = {}\n",
+        "[falloff]\nlinear = 0.0\n",
+    ] {
+        let scene = load(spelling);
+        assert_eq!(scene.falloff, None, "{spelling:?}");
+        assert!(!to_toml_string(&scene).contains("falloff"), "{spelling:?}");
+    }
+    let scene = load("falloff = { quadratic = 0.25 }\n");
+    assert_eq!(scene.falloff, Falloff::new(0.0, 0.25));
+    assert_eq!(
+        load(&to_toml_string(&scene)).falloff,
+        scene.falloff,
+        "kept by a round trip"
+    );
+    let world = rastray::World::build(&scene, Path::new(".")).expect("world");
+    assert_eq!(
+        world.falloff, scene.falloff,
+        "the world holds the same value"
+    );
+}
+
+#[test]
+fn zero_falloff_renders_exactly_like_none() {
+    let text = rastray::scene::DEFAULT_SCENE_TOML;
+    let with_zeros = format!("falloff = {{ linear = 0.0, quadratic = 0.0 }}\n{text}");
+    for algorithm in rastray::Algorithm::ALL {
+        let plain = common::draw(&common::scene(text), algorithm, 48, 32);
+        let zeros = common::draw(&common::scene(&with_zeros), algorithm, 48, 32);
+        assert_eq!(plain.pixels, zeros.pixels, "{algorithm}");
+    }
+    let falling = format!("falloff = {{ linear = 0.2 }}\n{text}");
+    let dimmer = common::draw(&common::scene(&falling), rastray::Algorithm::Phong, 48, 32);
+    let plain = common::draw(&common::scene(text), rastray::Algorithm::Phong, 48, 32);
+    assert_ne!(
+        plain.pixels, dimmer.pixels,
+        "a real falloff changes the image"
     );
 }

@@ -8,6 +8,7 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
     let (scene, base) = super::load_scene(Some(path))?;
     let report = super::build_world(&scene, &base)?;
     let world = &report.world;
+    super::print_warnings(&scene, world);
     println!("{}", path.display());
     let c = &scene.camera;
     println!(

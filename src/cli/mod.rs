@@ -113,6 +113,13 @@ pub fn load_scene(path: Option<&Path>) -> anyhow::Result<(Scene, PathBuf)> {
     }
 }
 
+/// Prints the scene's warnings on stderr, one `warning: …` line each.
+pub fn print_warnings(scene: &Scene, world: &rastray::World) {
+    for warning in rastray::warnings(scene, &scene.camera, world) {
+        eprintln!("warning: {warning}");
+    }
+}
+
 /// Builds the world of `scene` (model paths relative to `base`), printing on stderr what its
 /// model files held that rastray skipped, one `warning:` line each.
 pub fn build_world(scene: &Scene, base: &Path) -> anyhow::Result<WorldReport> {

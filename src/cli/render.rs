@@ -72,9 +72,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     };
     options.check()?;
     let world = Arc::new(super::build_world(&scene, &base)?.world);
-    if world.lights.is_empty() {
-        eprintln!("warning: the scene has no lights; only ambient light will show");
-    }
+    super::print_warnings(&scene, &world);
     let progress = Progress::new();
     let started = Instant::now();
     let exported = std::thread::scope(|s| {

@@ -50,6 +50,18 @@ impl Mesh {
             .sum()
     }
 
+    /// Triangles with zero area: corners that coincide or lie on one line (or coordinates too
+    /// large to multiply), so their edges' cross product has no direction. They cover nothing;
+    /// [`super::with_normals`] gives them a neighbour's normal.
+    pub fn zero_area_triangles(&self) -> usize {
+        (0..self.triangles.len())
+            .filter(|&t| {
+                let [a, b, c] = self.corners(t);
+                (b - a).cross(c - a).normalize_or_zero() == Vec3::ZERO
+            })
+            .count()
+    }
+
     /// Axis-aligned bounds (min, max); `None` for an empty mesh.
     pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
         let first = *self.positions.first()?;

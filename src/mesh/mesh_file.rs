@@ -7,6 +7,7 @@ use glam::Vec3;
 use super::geometry::ModelGeometry;
 use super::gltf::{GltfError, GltfModel, ImportWarning, load_gltf};
 use super::obj::load_obj;
+use super::obj_error::ObjError;
 
 /// A loaded model file: OBJ (one geometry) or glTF (one part per primitive instance).
 #[derive(Debug, Clone, PartialEq)]
@@ -19,8 +20,8 @@ pub enum MeshFile {
 #[derive(Debug, thiserror::Error)]
 pub enum MeshFileError {
     /// A malformed or unreadable OBJ file.
-    #[error("{0}")]
-    Obj(String),
+    #[error(transparent)]
+    Obj(#[from] ObjError),
     /// A malformed or unreadable glTF file.
     #[error(transparent)]
     Gltf(#[from] GltfError),

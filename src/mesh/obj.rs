@@ -1,28 +1,55 @@
 //! OBJ import through tobj: polygons triangulated, every group merged into one face list.
 
-use std::io::BufReader;
+use std::io::{BufRead, Read};
 use std::path::Path;
 
 use glam::Vec3;
+use tobj::LoadError;
+
+use super::obj_error::{ObjError, ObjProblem};
 
 use super::geometry::ModelGeometry;
 
 /// An OBJ file's geometry: every group of the file merged into one face list.
 pub type ObjModel = ModelGeometry;
 
-/// Reads the OBJ file at `path`. Errors are one-line messages (the caller names the file).
-pub fn load_obj(path: &Path) -> Result<ObjModel, String> {
-    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+/// Reads the OBJ file at `path`. Errors name the file, and the line where there is one.
+pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
+    let fail = |line, problem| ObjError {
+        path: path.to_path_buf(),
+        line,
+        problem,
+    };
+    let bytes = std::fs::read(path).map_err(|e| fail(None, ObjProblem::Io(e)))?;
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, _materials) = tobj::load_obj_buf(&mut BufReader::new(file), &options, |_| {
-        Err(tobj::LoadError::MaterialParseError)
-    })
-    .map_err(|e| format!("malformed OBJ: {e}"))?;
+    let mut reader = LineCounter {
+        text: &bytes,
+        consumed: 0,
+    };
+    let loaded = tobj::load_obj_buf(&mut reader, &options, |_| {
+        Err(LoadError::MaterialParseError)
+    });
+    let (models, _materials) = loaded.map_err(|error| match error {
+        // Indices are checked when a group ends, lines after the face that names them.
+        LoadError::FaceVertexOutOfBounds => match missing_vertex(&bytes) {
+            Some((line, index, count)) => {
+                fail(Some(line), ObjProblem::MissingVertex { index, count })
+            }
+            None => fail(None, ObjProblem::Malformed(error)),
+        },
+        LoadError::FaceTexCoordOutOfBounds
+        | LoadError::FaceNormalOutOfBounds
+        | LoadError::FaceColorOutOfBounds => fail(None, ObjProblem::Malformed(error)),
+        _ => fail(Some(reader.line()), ObjProblem::Malformed(error)),
+    })?;
+    if let Some((line, vertex)) = non_finite_vertex(&bytes) {
+        return Err(fail(Some(line), ObjProblem::NonFiniteVertex { vertex }));
+    }
 
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
@@ -34,17 +61,18 @@ pub fn load_obj(path: &Path) -> Result<ObjModel, String> {
         for p in m.positions.chunks_exact(3) {
             let v = Vec3::new(p[0], p[1], p[2]);
             if !v.is_finite() {
-                return Err(format!(
-                    "a vertex of object `{}` is not a finite number",
-                    model.name
+                // Found above with its line; this guards the statements the scan cannot read.
+                return Err(fail(
+                    None,
+                    ObjProblem::Malformed(LoadError::PositionParseError),
                 ));
             }
             positions.push(v);
         }
         if m.indices.iter().any(|&i| i as usize >= count) {
-            return Err(format!(
-                "a face of object `{}` names a vertex that does not exist",
-                model.name
+            return Err(fail(
+                None,
+                ObjProblem::Malformed(LoadError::FaceVertexOutOfBounds),
             ));
         }
         triangles.extend(
@@ -72,7 +100,7 @@ pub fn load_obj(path: &Path) -> Result<ObjModel, String> {
         }
     }
     if triangles.is_empty() {
-        return Err("the file holds no faces".to_string());
+        return Err(fail(None, ObjProblem::NoFaces));
     }
     let corner_normals = corner_normals.filter(|list| {
         list.iter()
@@ -84,4 +112,88 @@ pub fn load_obj(path: &Path) -> Result<ObjModel, String> {
         triangles,
         corner_normals,
     })
+}
+
+
+/// The OBJ text handed to tobj, counting how far tobj has read: when it refuses a statement,
+/// the statement is on the last line it consumed.
+struct LineCounter<'a> {
+    text: &'a [u8],
+    consumed: usize,
+}
+
+impl LineCounter<'_> {
+    /// 1-based number of the last line read.
+    fn line(&self) -> usize {
+        let read = &self.text[..self.consumed.saturating_sub(1)];
+        read.iter().filter(|&&b| b == b'\n').count() + 1
+    }
+}
+
+impl Read for LineCounter<'_> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = (&self.text[self.consumed..]).read(buf)?;
+        self.consumed += n;
+        Ok(n)
+    }
+}
+
+impl BufRead for LineCounter<'_> {
+    fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
+        Ok(&self.text[self.consumed..])
+    }
+
+    fn consume(&mut self, amount: usize) {
+        self.consumed = (self.consumed + amount).min(self.text.len());
+    }
+}
+
+/// The OBJ statements of `text` as (1-based line, keyword, arguments).
+fn statements(text: &[u8]) -> impl Iterator<Item = (usize, &str, std::str::SplitWhitespace<'_>)> {
+    text.split(|&b| b == b'\n')
+        .enumerate()
+        .filter_map(|(n, line)| {
+            let mut words = std::str::from_utf8(line).ok()?.split_whitespace();
+            Some((n + 1, words.next()?, words))
+        })
+}
+
+/// The line and number (from 1) of the first vertex with a NaN or infinite coordinate.
+fn non_finite_vertex(text: &[u8]) -> Option<(usize, usize)> {
+    statements(text)
+        .filter(|(_, keyword, _)| *keyword == "v")
+        .enumerate()
+        .find(|(_, (_, _, coordinates))| {
+            coordinates
+                .clone()
+                .take(3)
+                .any(|c| c.parse::<f32>().is_ok_and(|x| !x.is_finite()))
+        })
+        .map(|(k, (line, _, _))| (line, k + 1))
+}
+
+/// The first face corner naming a vertex the file lacks: its line, the index as written, and
+/// the file's vertex count. Negative indices count back from the vertices read so far.
+fn missing_vertex(text: &[u8]) -> Option<(usize, i64, usize)> {
+    let count = statements(text).filter(|(_, k, _)| *k == "v").count();
+    let mut so_far = 0i64;
+    for (line, keyword, corners) in statements(text) {
+        match keyword {
+            "v" => so_far += 1,
+            "f" => {
+                for corner in corners {
+                    let Some(index) = corner.split('/').next().and_then(|i| i.parse::<i64>().ok())
+                    else {
+                        continue;
+                    };
+                    let resolved = if index < 0 { so_far + index } else { index - 1 };
+                    if !(0..count as i64).contains(&resolved) {
+                        return Some((line, index, count));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    None
 }

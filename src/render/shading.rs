@@ -28,7 +28,7 @@ impl<'a> Lighting<'a> {
         Lighting {
             lights: &world.lights,
             ambient: world.ambient,
-            falloff: (world.falloff != Falloff::default()).then_some(world.falloff),
+            falloff: world.falloff,
         }
     }
 

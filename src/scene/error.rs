@@ -3,41 +3,43 @@
 
 use std::path::PathBuf;
 
+use super::validate::Invalid;
+use crate::mesh::ObjError;
+
 /// A scene that could not be read, checked or written.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
     /// The file could not be read or written.
-    #[error("{path}: {error}")]
+    #[error("{}: {error}", path.display())]
     Io {
         path: PathBuf,
         /// Shown in the message itself (not chained as a source, which would print it twice).
         error: std::io::Error,
     },
     /// TOML syntax error, unknown key or wrong type.
-    #[error("{path}{}: {message}", line.map(|l| format!(":{l}")).unwrap_or_default())]
+    #[error("{}{}: {}{}", path.display(), at_line(*line), error.message().trim(), quoted(source_line))]
     Parse {
         path: PathBuf,
+        /// 1-based line of the error, when the parser knows it.
         line: Option<usize>,
-        message: String,
+        /// That line's text, trimmed, when it has any.
+        source_line: Option<String>,
+        error: Box<toml::de::Error>,
     },
     /// A value out of range (NaN, negative size, coefficient above 1 …).
-    #[error("{path}{}: `{field}` {message}", line.map(|l| format!(":{l}")).unwrap_or_default())]
+    #[error("{}{}: {error}", path.display(), at_line(*line))]
     Invalid {
         path: PathBuf,
+        /// 1-based line of the value, or of the nearest enclosing table the file spells out.
         line: Option<usize>,
-        field: String,
-        message: String,
+        error: Invalid,
     },
     /// The scene would tessellate into more triangles than the renderers accept.
     #[error("the scene has {triangles} triangles; the limit is {limit}")]
     TooManyTriangles { triangles: u64, limit: u64 },
     /// An OBJ model referenced by the scene could not be loaded.
-    #[error("{obj}: cannot load the OBJ model of object[{index}]: {message}")]
-    Obj {
-        index: usize,
-        obj: PathBuf,
-        message: String,
-    },
+    #[error("{}: cannot load the OBJ model of object[{index}]: {}", error.location(), error.problem)]
+    Obj { index: usize, error: ObjError },
     /// A glTF model referenced by the scene could not be loaded.
     #[error("{path}: cannot load the glTF model of object[{index}]: {error}")]
     Gltf {
@@ -45,4 +47,17 @@ pub enum SceneError {
         path: PathBuf,
         error: crate::mesh::gltf::GltfError,
     },
+}
+
+/// `:12` for line 12, nothing when the line is unknown.
+fn at_line(line: Option<usize>) -> String {
+    line.map(|l| format!(":{l}")).unwrap_or_default()
+}
+
+/// ` (in `text`)`, or nothing.
+fn quoted(source_line: &Option<String>) -> String {
+    source_line
+        .as_ref()
+        .map(|text| format!(" (in `{text}`)"))
+        .unwrap_or_default()
 }

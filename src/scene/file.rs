@@ -5,8 +5,9 @@ use std::path::{Path, PathBuf};
 use toml::de::{DeTable, DeValue};
 
 use super::error::SceneError;
+use super::field_path::{FieldPath, PathSegment};
 use super::model::Scene;
-use super::validate::{FieldPath, PathSegment, validate};
+use super::validate::validate;
 use crate::atomic_file::write_atomically;
 
 /// The built-in default scene, the same text as `scenes/default.toml`.
@@ -29,7 +30,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 
 /// Parses and checks scene `text`; `path` is only used to name the file in errors.
 pub fn from_toml_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
-    let scene: Scene = toml::from_str(text).map_err(|e| parse_error(text, path, &e))?;
+    let scene: Scene = toml::from_str(text).map_err(|e| parse_error(text, path, e))?;
     if let Err(invalid) = validate(&scene) {
         let line = DeTable::parse(text)
             .ok()
@@ -38,8 +39,7 @@ pub fn from_toml_str(text: &str, path: &Path) -> Result<Scene, SceneError> {
         return Err(SceneError::Invalid {
             path: path.to_path_buf(),
             line,
-            field: invalid.path.to_string(),
-            message: invalid.message,
+            error: invalid,
         });
     }
     Ok(scene)
@@ -58,19 +58,18 @@ pub fn save(scene: &Scene, path: &Path) -> Result<(), SceneError> {
     })
 }
 
-fn parse_error(text: &str, path: &Path, e: &toml::de::Error) -> SceneError {
-    let line = e.span().map(|s| line_of(text, s.start));
-    let mut message = e.message().trim().to_string();
-    if let Some(l) = line {
-        let source_line = text.lines().nth(l - 1).unwrap_or("").trim();
-        if !source_line.is_empty() {
-            message = format!("{message} (in `{source_line}`)");
-        }
-    }
+fn parse_error(text: &str, path: &Path, error: toml::de::Error) -> SceneError {
+    let line = error.span().map(|s| line_of(text, s.start));
+    let source_line = line
+        .and_then(|l| text.lines().nth(l - 1))
+        .map(str::trim)
+        .filter(|t| !t.is_empty())
+        .map(str::to_string);
     SceneError::Parse {
         path: PathBuf::from(path),
         line,
-        message,
+        source_line,
+        error: Box::new(error),
     }
 }
 

@@ -1,7 +1,10 @@
 //! The scene model: what a `.toml` scene file holds, how it is read, checked and written.
 
 mod error;
+mod falloff;
+mod field_path;
 mod file;
+pub mod limits;
 mod material;
 mod model;
 mod object;
@@ -9,9 +12,12 @@ mod validate;
 mod warning;
 
 pub use error::SceneError;
+pub use falloff::Falloff;
+pub use field_path::{FieldPath, PathSegment};
 pub use file::{DEFAULT_SCENE_TOML, default_scene, from_toml_str, load, save, to_toml_string};
+pub use limits::{CountLimits, Limits, MAX_DEPTH};
 pub use material::Material;
-pub use model::{Camera, Falloff, Light, Scene};
-pub use object::{Object, Shape, ShapeKind};
-pub use validate::{FieldPath, Invalid, MAX_DEPTH, validate};
+pub use model::{Camera, Light, Scene};
+pub use object::{Object, ObjectError, Shape, ShapeKind};
+pub use validate::{Components, Invalid, Problem, validate};
 pub use warning::SceneWarning;

@@ -3,6 +3,7 @@
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
+use super::falloff::{Falloff, falloff_table};
 use super::object::Object;
 
 /// A whole scene as stored in a `.toml` file. Invariant after [`super::validate`]: every number
@@ -22,8 +23,13 @@ pub struct Scene {
     /// Maximum reflection recursion depth for the ray tracer (0 = no reflections), ≤ 16.
     #[serde(default = "default_max_depth")]
     pub max_depth: u32,
-    /// Optional distance attenuation of point lights; absent means att(d) = 1.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// Distance attenuation of point lights; `None` (the key absent, or both coefficients 0)
+    /// means att(d) = 1.
+    #[serde(
+        default,
+        deserialize_with = "falloff_table",
+        skip_serializing_if = "Option::is_none"
+    )]
     pub falloff: Option<Falloff>,
     /// Point lights, in file order.
     #[serde(default, rename = "light", skip_serializing_if = "Vec::is_empty")]
@@ -121,23 +127,5 @@ impl Default for Light {
             intensity: default_intensity(),
             color: default_light_color(),
         }
-    }
-}
-
-/// Distance attenuation att(d) = 1 / (1 + linear·d + quadratic·d²), coefficients ≥ 0.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct Falloff {
-    /// Linear coefficient, per world unit, ≥ 0.
-    pub linear: f32,
-    /// Quadratic coefficient, per square world unit, ≥ 0.
-    pub quadratic: f32,
-}
-
-impl Falloff {
-    /// Attenuation factor at distance `d` (world units), in (0, 1].
-    #[inline]
-    pub fn attenuation(&self, d: f32) -> f32 {
-        1.0 / (1.0 + self.linear * d + self.quadratic * d * d)
     }
 }

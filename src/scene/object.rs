@@ -199,22 +199,30 @@ pub struct ObjectRecord {
     material: Material,
 }
 
-impl TryFrom<ObjectRecord> for Object {
-    type Error = String;
+/// An `[[object]]` table whose keys do not fit its `type`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum ObjectError {
+    /// A key of another shape type.
+    #[error("key `{key}` does not apply to an object of type \"{}\"", kind.name())]
+    Stray { key: &'static str, kind: ShapeKind },
+    /// A key the type cannot do without.
+    #[error("an object of type \"{}\" needs `{key}`", kind.name())]
+    Missing { key: &'static str, kind: ShapeKind },
+}
 
-    fn try_from(r: ObjectRecord) -> Result<Object, String> {
+impl TryFrom<ObjectRecord> for Object {
+    type Error = ObjectError;
+
+    fn try_from(r: ObjectRecord) -> Result<Object, ObjectError> {
         let kind = r.kind;
-        let stray = |key: &str, present: bool| -> Result<(), String> {
+        let stray = |key: &'static str, present: bool| -> Result<(), ObjectError> {
             if present {
-                Err(format!(
-                    "key `{key}` does not apply to an object of type \"{}\"",
-                    kind.name()
-                ))
+                Err(ObjectError::Stray { key, kind })
             } else {
                 Ok(())
             }
         };
-        let required = |key: &str| format!("an object of type \"{}\" needs `{key}`", kind.name());
+        let required = |key: &'static str| ObjectError::Missing { key, kind };
         let shape = match kind {
             ShapeKind::Icosahedron => {
                 stray("size", r.size.is_some())?;

@@ -1,145 +1,138 @@
-//! Range checks on a parsed scene. Every check is written so that NaN fails it.
+//! Range checks on a parsed scene, against the ranges of [`super::limits`]. Every check is
+//! written so that NaN fails it.
 
 use std::fmt;
 
 use glam::Vec3;
 
+use super::field_path::FieldPath;
+use super::limits::{self, CountLimits, Limits};
 use super::material::Material;
 use super::model::Scene;
 use super::object::Shape;
 
-/// Most subdivisions an icosahedron may have (8 gives 1,310,720 faces).
-pub const MAX_SUBDIVISIONS: u32 = 8;
-/// Most segments per box or prism face edge (512 gives 3,145,728 box faces).
-pub const MAX_SEGMENTS: u32 = 512;
-/// Deepest reflection recursion allowed.
-pub const MAX_DEPTH: u32 = 16;
-/// Largest coordinate magnitude accepted, world units.
-pub const MAX_COORDINATE: f32 = 1.0e6;
-
-/// Where in a scene file a value lives, such as `object[2].size`.
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
-pub struct FieldPath(pub Vec<PathSegment>);
-
-/// One step of a [`FieldPath`].
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum PathSegment {
-    Key(String),
-    Index(usize),
-}
-
-impl FieldPath {
-    fn key(mut self, k: &str) -> FieldPath {
-        self.0.push(PathSegment::Key(k.to_string()));
-        self
-    }
-    fn index(mut self, i: usize) -> FieldPath {
-        self.0.push(PathSegment::Index(i));
-        self
-    }
-}
-
-impl fmt::Display for FieldPath {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        for (n, seg) in self.0.iter().enumerate() {
-            match seg {
-                PathSegment::Key(k) if n == 0 => write!(f, "{k}")?,
-                PathSegment::Key(k) => write!(f, ".{k}")?,
-                PathSegment::Index(i) => write!(f, "[{i}]")?,
-            }
-        }
-        Ok(())
-    }
-}
-
 /// A value out of its range: where it is and what is wrong.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("`{path}` {problem}")]
 pub struct Invalid {
     pub path: FieldPath,
-    pub message: String,
+    pub problem: Problem,
+}
+
+/// What is wrong with a value.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Problem {
+    /// A number outside its limits.
+    #[error("must be {limits}, got {value}")]
+    Number { value: f32, limits: Limits },
+    /// A vector with a component outside the limits every component shares.
+    #[error("{components} must each be {limits}, got {value}")]
+    Vector {
+        value: Vec3,
+        components: Components,
+        limits: Limits,
+    },
+    /// A whole number outside its limits.
+    #[error("must be {limits}, got {value}")]
+    Count { value: u32, limits: CountLimits },
+    /// The camera looks at its own position.
+    #[error("must differ from the camera position")]
+    TargetAtPosition,
+    /// The camera's up direction has no part across the view direction.
+    #[error("must not be parallel to the view direction")]
+    UpAlongView,
+    /// A mesh object without a file.
+    #[error("must name an OBJ file")]
+    NoPath,
+}
+
+/// What the three components of a vector are, for messages.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Components {
+    Coordinates,
+    Angles,
+    Channels,
+    Dimensions,
+}
+
+impl fmt::Display for Components {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Components::Coordinates => "coordinates",
+            Components::Angles => "angles",
+            Components::Channels => "channels",
+            Components::Dimensions => "width, height and depth",
+        })
+    }
 }
 
 type Check = Result<(), Invalid>;
 
-fn fail(path: &FieldPath, message: String) -> Check {
+fn fail(path: &FieldPath, problem: Problem) -> Check {
     Err(Invalid {
         path: path.clone(),
-        message,
+        problem,
     })
 }
 
-fn finite_vec(path: &FieldPath, v: Vec3) -> Check {
-    if v.is_finite() && v.abs().max_element() <= MAX_COORDINATE {
+fn number(path: &FieldPath, value: f32, limits: Limits) -> Check {
+    if limits.accepts(value) {
+        Ok(())
+    } else {
+        fail(path, Problem::Number { value, limits })
+    }
+}
+
+fn vector(path: &FieldPath, value: Vec3, components: Components, limits: Limits) -> Check {
+    if value.to_array().iter().all(|&x| limits.accepts(x)) {
         Ok(())
     } else {
         fail(
             path,
-            format!("must be finite numbers of magnitude at most {MAX_COORDINATE:e}, got {v}"),
+            Problem::Vector {
+                value,
+                components,
+                limits,
+            },
         )
     }
 }
 
-fn unit_range(path: &FieldPath, x: f32) -> Check {
-    if (0.0..=1.0).contains(&x) {
+fn count(path: &FieldPath, value: u32, limits: CountLimits) -> Check {
+    if limits.accepts(value) {
         Ok(())
     } else {
-        fail(path, format!("must be between 0 and 1, got {x}"))
+        fail(path, Problem::Count { value, limits })
     }
 }
 
-fn color(path: &FieldPath, c: Vec3) -> Check {
-    if c.cmpge(Vec3::ZERO).all() && c.cmple(Vec3::ONE).all() {
-        Ok(())
-    } else {
-        fail(
-            path,
-            format!("each channel must be between 0 and 1, got {c}"),
-        )
-    }
+fn coordinates(path: &FieldPath, value: Vec3) -> Check {
+    vector(path, value, Components::Coordinates, limits::COORDINATE)
 }
 
-fn positive(path: &FieldPath, x: f32) -> Check {
-    if x > 0.0 && x <= MAX_COORDINATE {
-        Ok(())
-    } else {
-        fail(path, format!("must be a positive finite number, got {x}"))
-    }
-}
-
-fn positive_size(path: &FieldPath, v: Vec3) -> Check {
-    if v.cmpgt(Vec3::ZERO).all() && v.max_element() <= MAX_COORDINATE {
-        Ok(())
-    } else {
-        fail(
-            path,
-            format!("width, height and depth must be positive finite numbers, got {v}"),
-        )
-    }
-}
-
-fn non_negative(path: &FieldPath, x: f32, max: f32) -> Check {
-    if (0.0..=max).contains(&x) {
-        Ok(())
-    } else {
-        fail(path, format!("must be between 0 and {max}, got {x}"))
-    }
-}
-
-fn at_most(path: &FieldPath, x: u32, min: u32, max: u32) -> Check {
-    if (min..=max).contains(&x) {
-        Ok(())
-    } else {
-        fail(path, format!("must be between {min} and {max}, got {x}"))
-    }
+fn color(path: &FieldPath, value: Vec3) -> Check {
+    vector(path, value, Components::Channels, limits::COLOR)
 }
 
 /// Checks a material's coefficients.
-pub fn validate_material(path: &FieldPath, m: &Material) -> Check {
+fn validate_material(path: &FieldPath, m: &Material) -> Check {
     color(&path.clone().key("color"), m.color)?;
-    unit_range(&path.clone().key("diffuse"), m.diffuse)?;
-    unit_range(&path.clone().key("specular"), m.specular)?;
-    non_negative(&path.clone().key("shininess"), m.shininess, 10_000.0)?;
-    unit_range(&path.clone().key("reflection"), m.reflection)
+    number(&path.clone().key("diffuse"), m.diffuse, limits::COEFFICIENT)?;
+    number(
+        &path.clone().key("specular"),
+        m.specular,
+        limits::COEFFICIENT,
+    )?;
+    number(
+        &path.clone().key("shininess"),
+        m.shininess,
+        limits::SHININESS,
+    )?;
+    number(
+        &path.clone().key("reflection"),
+        m.reflection,
+        limits::COEFFICIENT,
+    )
 }
 
 /// Checks every number of `scene`; the first problem found is returned.
@@ -147,24 +140,13 @@ pub fn validate(scene: &Scene) -> Check {
     let root = FieldPath::default();
     let cam = root.clone().key("camera");
     let c = &scene.camera;
-    finite_vec(&cam.clone().key("position"), c.position)?;
-    finite_vec(&cam.clone().key("target"), c.target)?;
-    finite_vec(&cam.clone().key("up"), c.up)?;
-    if !(c.fov > 0.0 && c.fov < 180.0) {
-        fail(
-            &cam.clone().key("fov"),
-            format!(
-                "must be between 0 and 180 degrees (exclusive), got {}",
-                c.fov
-            ),
-        )?;
-    }
+    coordinates(&cam.clone().key("position"), c.position)?;
+    coordinates(&cam.clone().key("target"), c.target)?;
+    coordinates(&cam.clone().key("up"), c.up)?;
+    number(&cam.clone().key("fov"), c.fov, limits::FOV)?;
     let dir = c.target - c.position;
     if dir.length_squared() < 1e-12 {
-        fail(
-            &cam.clone().key("target"),
-            "must differ from the camera position".into(),
-        )?;
+        fail(&cam.clone().key("target"), Problem::TargetAtPosition)?;
     }
     if dir
         .normalize()
@@ -172,33 +154,38 @@ pub fn validate(scene: &Scene) -> Check {
         .length_squared()
         < 1e-8
     {
-        fail(
-            &cam.clone().key("up"),
-            "must not be parallel to the view direction".into(),
-        )?;
+        fail(&cam.clone().key("up"), Problem::UpAlongView)?;
     }
-    unit_range(&root.clone().key("ambient"), scene.ambient)?;
+    number(&root.clone().key("ambient"), scene.ambient, limits::AMBIENT)?;
     color(&root.clone().key("background"), scene.background)?;
-    at_most(
+    count(
         &root.clone().key("max_depth"),
         scene.max_depth,
-        0,
-        MAX_DEPTH,
+        limits::REFLECTION_DEPTH,
     )?;
     if let Some(f) = &scene.falloff {
         let fp = root.clone().key("falloff");
-        non_negative(&fp.clone().key("linear"), f.linear, 1.0e6)?;
-        non_negative(&fp.clone().key("quadratic"), f.quadratic, 1.0e6)?;
+        number(&fp.clone().key("linear"), f.linear, limits::FALLOFF)?;
+        number(&fp.clone().key("quadratic"), f.quadratic, limits::FALLOFF)?;
     }
     for (i, light) in scene.lights.iter().enumerate() {
         let lp = root.clone().key("light").index(i);
-        finite_vec(&lp.clone().key("position"), light.position)?;
-        non_negative(&lp.clone().key("intensity"), light.intensity, 1.0e6)?;
+        coordinates(&lp.clone().key("position"), light.position)?;
+        number(
+            &lp.clone().key("intensity"),
+            light.intensity,
+            limits::INTENSITY,
+        )?;
         color(&lp.clone().key("color"), light.color)?;
     }
     for (i, object) in scene.objects.iter().enumerate() {
         let op = root.clone().key("object").index(i);
-        finite_vec(&op.clone().key("rotation"), object.rotation)?;
+        vector(
+            &op.clone().key("rotation"),
+            object.rotation,
+            Components::Angles,
+            limits::ROTATION,
+        )?;
         validate_material(&op.clone().key("material"), &object.material)?;
         match &object.shape {
             Shape::Icosahedron {
@@ -206,13 +193,12 @@ pub fn validate(scene: &Scene) -> Check {
                 radius,
                 subdivisions,
             } => {
-                finite_vec(&op.clone().key("center"), *center)?;
-                positive(&op.clone().key("radius"), *radius)?;
-                at_most(
+                coordinates(&op.clone().key("center"), *center)?;
+                number(&op.clone().key("radius"), *radius, limits::EXTENT)?;
+                count(
                     &op.clone().key("subdivisions"),
                     *subdivisions,
-                    0,
-                    MAX_SUBDIVISIONS,
+                    limits::SUBDIVISIONS,
                 )?;
             }
             Shape::Box {
@@ -225,9 +211,14 @@ pub fn validate(scene: &Scene) -> Check {
                 size,
                 segments,
             } => {
-                finite_vec(&op.clone().key("center"), *center)?;
-                positive_size(&op.clone().key("size"), *size)?;
-                at_most(&op.clone().key("segments"), *segments, 1, MAX_SEGMENTS)?;
+                coordinates(&op.clone().key("center"), *center)?;
+                vector(
+                    &op.clone().key("size"),
+                    *size,
+                    Components::Dimensions,
+                    limits::EXTENT,
+                )?;
+                count(&op.clone().key("segments"), *segments, limits::SEGMENTS)?;
             }
             Shape::Mesh {
                 path,
@@ -235,10 +226,10 @@ pub fn validate(scene: &Scene) -> Check {
                 scale,
             } => {
                 if path.as_os_str().is_empty() {
-                    fail(&op.clone().key("path"), "must name an OBJ file".into())?;
+                    fail(&op.clone().key("path"), Problem::NoPath)?;
                 }
-                finite_vec(&op.clone().key("position"), *position)?;
-                positive(&op.clone().key("scale"), *scale)?;
+                coordinates(&op.clone().key("position"), *position)?;
+                number(&op.clone().key("scale"), *scale, limits::EXTENT)?;
             }
         }
     }

@@ -13,6 +13,7 @@ use super::preview::{ColorMode, PreviewImage};
 use super::selection::{Focus, Item, Selection};
 use super::view_state::ViewState;
 use crate::scene::Scene;
+use crate::warnings::Warning;
 
 /// Whether a status message reports success or a problem.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -84,6 +85,8 @@ pub struct App {
     pub(super) drag: Option<(u16, u16)>,
     /// Set when the event loop should end.
     pub(super) quit: bool,
+    /// Warnings of the last world built; the status line shows those it did not have before.
+    pub(super) warnings: Vec<Warning>,
 }
 
 impl App {
@@ -100,6 +103,7 @@ impl App {
             export: None,
             drag: None,
             quit: false,
+            warnings: Vec::new(),
         }
     }
 

@@ -1,6 +1,7 @@
 //! The editable properties of the selected item: their labels, current values, steps, and how
-//! typed text becomes a value. Every change is checked with [`crate::scene::validate`] on a copy
-//! of the scene, so a refused value changes nothing.
+//! typed text becomes a value. Ranges and steps come from [`crate::scene::limits`], and every
+//! change is checked with [`crate::scene::validate`] on a copy of the scene, so a refused value
+//! changes nothing.
 
 use std::path::PathBuf;
 
@@ -8,6 +9,7 @@ use glam::Vec3;
 
 use super::selection::Item;
 use super::text::clean;
+use crate::scene::limits::{self, CountLimits, Limits};
 use crate::scene::{Camera, Light, Object, Scene, Shape, validate};
 
 /// One component of a vector field.
@@ -81,19 +83,12 @@ pub fn format_number(x: f32) -> String {
     if s == "-0" { "0".into() } else { s.into() }
 }
 
-/// How far Left/Right moves a number, and the range stepping keeps to.
+/// The accepted values of a numeric property, which Left/Right steps through.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Step {
-    pub amount: f32,
-    pub min: f32,
-    pub max: f32,
+pub enum Range {
+    Number(Limits),
+    Count(CountLimits),
 }
-
-const fn step(amount: f32, min: f32, max: f32) -> Step {
-    Step { amount, min, max }
-}
-
-const FREE: f32 = 1.0e6;
 
 impl Key {
     /// The label shown in the properties panel, such as `center.x` or `color.r`.
@@ -130,25 +125,26 @@ impl Key {
         }
     }
 
-    /// The step and range of a numeric property; counts step by whole units.
-    pub fn step(self) -> Step {
-        match self {
+    /// The scene's limits for a numeric property; `None` for names, paths and flags.
+    pub fn range(self) -> Option<Range> {
+        use Range::{Count, Number};
+        Some(match self {
             Key::Center(_) | Key::Position(_) | Key::CameraPosition(_) | Key::CameraTarget(_) => {
-                step(0.1, -FREE, FREE)
+                Number(limits::COORDINATE)
             }
-            Key::Radius | Key::Size(_) | Key::Scale => step(0.1, 0.01, FREE),
-            Key::Rotation(_) => step(5.0, -FREE, FREE),
-            Key::Color(_) | Key::Background(_) | Key::Diffuse | Key::Specular | Key::Reflection => {
-                step(0.05, 0.0, 1.0)
-            }
-            Key::Shininess => step(1.0, 0.0, 10_000.0),
-            Key::Intensity => step(0.05, 0.0, FREE),
-            Key::Fov => step(1.0, 1.0, 179.0),
-            Key::Ambient => step(0.01, 0.0, 1.0),
-            Key::Subdivisions | Key::MaxDepth => step(1.0, 0.0, FREE),
-            Key::Segments => step(1.0, 1.0, FREE),
-            Key::Name | Key::Path | Key::Smooth => step(0.0, 0.0, 0.0),
-        }
+            Key::Radius | Key::Size(_) | Key::Scale => Number(limits::EXTENT),
+            Key::Rotation(_) => Number(limits::ROTATION),
+            Key::Color(_) | Key::Background(_) => Number(limits::COLOR),
+            Key::Diffuse | Key::Specular | Key::Reflection => Number(limits::COEFFICIENT),
+            Key::Shininess => Number(limits::SHININESS),
+            Key::Intensity => Number(limits::INTENSITY),
+            Key::Fov => Number(limits::FOV),
+            Key::Ambient => Number(limits::AMBIENT),
+            Key::Subdivisions => Count(limits::SUBDIVISIONS),
+            Key::Segments => Count(limits::SEGMENTS),
+            Key::MaxDepth => Count(limits::REFLECTION_DEPTH),
+            Key::Name | Key::Path | Key::Smooth => return None,
+        })
     }
 }
 
@@ -333,30 +329,33 @@ fn tidy(x: f32) -> f32 {
     (x * 10_000.0).round() / 10_000.0
 }
 
-/// `scene` with `key` of `item` stepped `times` steps (negative: down); booleans toggle.
+/// `scene` with `key` of `item` stepped `times` steps (negative: down) within the key's
+/// [`Range`]; booleans toggle. A step that would not move toward `times` is refused.
 pub fn stepped(scene: &Scene, item: Item, key: Key, times: i32) -> Result<Scene, Refusal> {
     let mut part = Part::of(scene, item).ok_or("nothing selected")?;
-    let s = key.step();
-    match part.slot(key).ok_or("no such property")? {
-        Slot::Number(x) => {
-            let new = tidy((*x + s.amount * times as f32).clamp(s.min, s.max));
-            if new == *x {
-                return Err(format!(
-                    "{} is at its limit",
-                    key.label(&Part::of(scene, item).ok_or("")?)
-                ));
+    let range = key.range();
+    let moved = |old: f64, new: f64| (new - old) * times as f64 > 0.0;
+    match (part.slot(key).ok_or("no such property")?, range) {
+        (Slot::Number(x), Some(Range::Number(limits))) => {
+            let (lo, hi) = limits.stepping_range();
+            let new = tidy(*x + limits.step * times as f32).clamp(lo, hi);
+            if !moved(*x as f64, new as f64) {
+                return Err(format!("already at its limit ({limits})"));
             }
             *x = new;
         }
-        Slot::Count(n) => {
-            let new = (*n as i64 + times as i64).clamp(s.min as i64, u32::MAX as i64) as u32;
-            if new == *n {
-                return Err("already at its limit".into());
+        (Slot::Count(n), Some(Range::Count(limits))) => {
+            let new = (*n as i64 + times as i64).clamp(limits.min as i64, limits.max as i64);
+            if !moved(*n as f64, new as f64) {
+                return Err(format!("already at its limit ({limits})"));
             }
-            *n = new;
+            *n = new as u32;
         }
-        Slot::Flag(b) => *b = !*b,
-        Slot::Name(_) | Slot::Path(_) => return Err("press Enter to type a new value".into()),
+        (Slot::Flag(b), _) => *b = !*b,
+        (Slot::Name(_) | Slot::Path(_), _) => {
+            return Err("press Enter to type a new value".into());
+        }
+        (Slot::Number(_) | Slot::Count(_), _) => return Err("no range for this property".into()),
     }
     checked(scene, item, part)
 }
@@ -403,6 +402,6 @@ pub fn typed(scene: &Scene, item: Item, key: Key, text: &str) -> Result<Scene, R
 fn checked(scene: &Scene, item: Item, part: Part) -> Result<Scene, Refusal> {
     let mut new = scene.clone();
     part.store(&mut new, item);
-    validate(&new).map_err(|e| e.message)?;
+    validate(&new).map_err(|e| e.problem.to_string())?;
     Ok(new)
 }

@@ -170,8 +170,12 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<Exit, TuiErr
                         input::map_too_small(&app, &ev)
                     }
                 }
-                // A frame for a superseded request is stale: dropped.
-                Event::Render(reply) if reply.id() == state.latest => {
+                // A frame for a superseded request is stale: dropped. Warnings describe the
+                // world built, whichever request built it: kept.
+                Event::Render(reply)
+                    if reply.id() == state.latest
+                        || matches!(reply, RenderReply::Warned { .. }) =>
+                {
                     state.arrived(&reply);
                     Some(Action::Rendered(Box::new(reply)))
                 }

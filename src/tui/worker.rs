@@ -10,6 +10,7 @@ use super::preview::PreviewImage;
 use crate::World;
 use crate::render::{Algorithm, Frame, Progress, RenderError, RenderOptions, Renderer};
 use crate::scene::{Camera, Scene};
+use crate::warnings::{Warning, warnings};
 use crate::world::MeshFileCache;
 
 /// Where a rendered image goes.
@@ -66,13 +67,18 @@ pub enum RenderReply {
     },
     /// The world could not be built or the image not rendered.
     Failed { id: u64, message: String },
+    /// The warnings of a newly built world, sent before its first image; an empty list when
+    /// the world before had some and this one has none.
+    Warned { id: u64, warnings: Vec<Warning> },
 }
 
 impl RenderReply {
     /// The request this reply answers.
     pub fn id(&self) -> u64 {
         match self {
-            RenderReply::Shot { id, .. } | RenderReply::Failed { id, .. } => *id,
+            RenderReply::Shot { id, .. }
+            | RenderReply::Failed { id, .. }
+            | RenderReply::Warned { id, .. } => *id,
         }
     }
 }
@@ -126,6 +132,8 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
     // Keeps the ray tracer's BVH of the current world while only the camera moves.
     let mut renderer: Option<Renderer> = None;
     let mut frame = Frame::default();
+    // The warnings of the last world built.
+    let mut warned: Vec<Warning> = Vec::new();
     while let Ok(mut request) = rx.recv() {
         while let Ok(newer) = rx.try_recv() {
             request = newer;
@@ -138,6 +146,15 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
             Some((g, w)) if *g == generation => w.clone(),
             _ => match World::build_cached(&request.scene, &request.base_dir, &mut cache) {
                 Ok(w) => {
+                    let found = warnings(&request.scene, &request.wanted.camera, &w);
+                    // While there are none, and were none, only images are sent.
+                    if !(found.is_empty() && warned.is_empty()) {
+                        reply(RenderReply::Warned {
+                            id: request.id,
+                            warnings: found.clone(),
+                        });
+                    }
+                    warned = found;
                     let w = Arc::new(w);
                     world = Some((generation, w.clone()));
                     w

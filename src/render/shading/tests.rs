@@ -76,7 +76,7 @@ fn case() -> impl Strategy<Value = Case> {
 /// The README's formula, transcribed with glam and libm:
 /// C = Ia·color + Σ I·att(d)·Lc ⊙ (Kd·max(0, N·L)·color + Ks·max(0, R·V)^p), specular only where
 /// N·L > 0, the normal flipped toward the viewer.
-fn reference(c: &Case, ambient: f32, falloff: Falloff) -> Vec3 {
+fn reference(c: &Case, ambient: f32, falloff: Option<Falloff>) -> Vec3 {
     let m = &c.material;
     let n = if c.n.dot(c.v) < 0.0 { -c.n } else { c.n };
     let mut color = ambient * m.color;
@@ -89,7 +89,7 @@ fn reference(c: &Case, ambient: f32, falloff: Falloff) -> Vec3 {
         }
         let r = 2.0 * n_dot_l * n - l;
         let specular = m.specular * r.dot(c.v).max(0.0).powf(m.shininess);
-        let att = falloff.attenuation(to_light.length());
+        let att = falloff.map_or(1.0, |f| f.attenuation(to_light.length()));
         color += light.intensity * att * light.color * (m.diffuse * n_dot_l * m.color + specular);
     }
     color
@@ -110,11 +110,11 @@ proptest! {
         linear in 0.0f32..0.5,
         quadratic in 0.0f32..0.5,
     ) {
-        for falloff in [Falloff::default(), Falloff { linear, quadratic }] {
+        for falloff in [None, Falloff::new(linear, quadratic)] {
             let lighting = Lighting {
                 lights: &c.lights,
                 ambient,
-                falloff: (falloff != Falloff::default()).then_some(falloff),
+                falloff,
             };
             let m = MaterialLanes::new(&c.material, brightest(&c.lights));
             let got = lighting.shade(c.p, c.n, c.v, &m, |_, _| true);

@@ -233,5 +233,19 @@ fn rendered(app: &mut App, reply: RenderReply) {
             }
         }
         RenderReply::Failed { message, .. } => app.error(message),
+        RenderReply::Warned { warnings, .. } => {
+            let new: Vec<_> = warnings
+                .iter()
+                .filter(|w| !app.warnings.contains(w))
+                .collect();
+            if let Some(first) = new.first() {
+                let more = match new.len() - 1 {
+                    0 => String::new(),
+                    n => format!(" (and {n} more)"),
+                };
+                app.error(format!("warning: {first}{more}"));
+            }
+            app.warnings = warnings;
+        }
     }
 }
