@@ -28,7 +28,7 @@ fn warned(warnings: Vec<Warning>) -> Action {
 }
 
 fn status(app: &App) -> (String, Tone) {
-    let s = app.status.as_ref().expect("a status message");
+    let s = app.status().expect("a status message");
     (s.text.clone(), s.tone)
 }
 

@@ -114,7 +114,6 @@ pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
     })
 }
 
-
 /// The OBJ text handed to tobj, counting how far tobj has read: when it refuses a statement,
 /// the statement is on the last line it consumed.
 struct LineCounter<'a> {
