@@ -1,6 +1,6 @@
 //! The document: the scene being edited, the file it belongs to, its undo history and whether it
 //! has unsaved edits. Every change of the scene passes through one place,
-//! [`Document::mark_changed`], which marks the document modified and bumps the generation the
+//! `Document::mark_changed`, which marks the document modified and bumps the generation the
 //! render worker keys its world on.
 
 use std::path::{Path, PathBuf};

@@ -4,7 +4,7 @@
 //! crossterm's own reader keeps query replies to itself, and its blocking `read` holds the reader
 //! while it waits, so the editor could not ask the terminal anything while it runs. The editor
 //! needs to: a cursor-position query after each preview frame tells when the terminal has drawn
-//! it (see [`super::link`]). This decoder reads what the editor's terminals send (xterm-style
+//! it (see [`super::pacer`]). This decoder reads what the editor's terminals send (xterm-style
 //! CSI and SS3 keys with modifiers, SGR and X10 mouse, bracketed paste, focus) and produces
 //! crossterm's event types, so the rest of the editor is unchanged.
 
