@@ -135,6 +135,23 @@ impl Document {
         Ok(())
     }
 
+    /// Takes `scene`, the document's file as another program rewrote it, as one undoable step:
+    /// the document then matches its file again. Returns `false`, changing nothing, when the file
+    /// holds the scene already (the editor's own save, read back).
+    pub fn reload(&mut self, scene: Scene) -> bool {
+        let changed = self.edit(scene);
+        if changed {
+            self.mark_saved();
+        }
+        changed
+    }
+
+    /// The model files the scene uses were rewritten on disk: the world must be built again,
+    /// though the scene itself is unchanged.
+    pub fn models_changed(&mut self) {
+        self.generation += 1;
+    }
+
     /// Replaces the document with the scene file at `path`, without history; on error nothing
     /// changes.
     pub fn open(&mut self, path: &Path) -> Result<(), SceneError> {
