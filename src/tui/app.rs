@@ -212,7 +212,7 @@ impl App {
     pub fn title(&self) -> String {
         match self.doc.path() {
             Some(p) => super::text::clean(&p.display().to_string()),
-            None => "(built-in scene)".into(),
+            None => format!("({})", super::text::clean(self.doc.untitled_name())),
         }
     }
 

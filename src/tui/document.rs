@@ -26,6 +26,8 @@ pub struct Document {
     dirty: bool,
     /// Bumped on every change of the scene or of the folder its mesh paths are relative to.
     generation: u64,
+    /// What the scene is called while it has no file.
+    untitled: String,
 }
 
 impl Document {
@@ -40,7 +42,18 @@ impl Document {
             redo: Vec::new(),
             dirty: false,
             generation: 0,
+            untitled: "built-in scene".into(),
         }
+    }
+
+    /// Calls the scene `name` while it has no file (a scene made for a model file, say).
+    pub fn name_untitled(&mut self, name: impl Into<String>) {
+        self.untitled = name.into();
+    }
+
+    /// What the scene is called while it has no file: "built-in scene" unless named otherwise.
+    pub fn untitled_name(&self) -> &str {
+        &self.untitled
     }
 
     /// The scene as edited.

@@ -216,6 +216,8 @@ fn load(path: Option<&Path>) -> Result<App, TuiError> {
         Some(p) if crate::model_scene::is_model_path(p) => {
             let scene = crate::model_scene::scene_for_model(p)?;
             let mut app = App::new(scene, None, document::folder_of(p));
+            let file = p.file_name().unwrap_or_default().to_string_lossy();
+            app.doc.name_untitled(format!("new scene of {file}"));
             app.info(format!(
                 "a new scene showing {}: s saves it as a scene file",
                 crate::tui::text::clean(&p.display().to_string())
