@@ -1,0 +1,151 @@
+//! The vertex stage: every mesh vertex projected once per frame, eight at a time, to what
+//! triangle setup needs of it: its snapped pixel position, its depth w, and which planes of the
+//! view volume and of the guard band it lies outside.
+//!
+//! Each lane computes exactly what [`View::to_clip`], [`View::clip_to_pixel`] and the snapping
+//! compute for one vertex, in the same order, so a triangle set up from projected vertices gets
+//! the same bits as one set up from its clip-space corners.
+
+use glam::Vec3;
+use wide::{CmpGe, CmpGt, CmpLe, CmpLt, i32x8};
+
+use super::snap::{GUARD, SUBPIXEL};
+use crate::render::camera::{NEAR, View};
+use crate::render::simd::{F32x8, V3, WIDTH};
+
+/// Outside the near plane (w < [`NEAR`]).
+pub const BEHIND: u32 = 1;
+/// Outside the view volume's four side planes: x > w, x < −w, y > w, y < −w.
+pub const PAST_RIGHT: u32 = 1 << 1;
+pub const PAST_LEFT: u32 = 1 << 2;
+pub const PAST_TOP: u32 = 1 << 3;
+pub const PAST_BOTTOM: u32 = 1 << 4;
+/// The planes a triangle is trivially rejected by when all three vertices lie outside one.
+pub const OUTSIDE: u32 = BEHIND | PAST_RIGHT | PAST_LEFT | PAST_TOP | PAST_BOTTOM;
+/// Not strictly inside the near plane and the guard band (|x|, |y| ≤ GUARD·w): a triangle with
+/// such a vertex is clipped, and the vertex's snapped position is not used.
+pub const NEEDS_CLIP: u32 = 1 << 5;
+
+/// One vertex after the vertex stage.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ProjectedVertex {
+    /// Pixel coordinates in 1/256 pixel, rounded to nearest (halves away from zero). Only
+    /// meaningful without [`NEEDS_CLIP`].
+    pub x: i32,
+    pub y: i32,
+    /// Clip-space w: the depth along the view direction, world units.
+    pub w: f32,
+    /// Outcode bits: [`BEHIND`] … [`NEEDS_CLIP`].
+    pub code: u32,
+}
+
+/// Projects `positions` (world space) through `view` into `out`, as long.
+pub fn project(view: &View, positions: &[Vec3], out: &mut [ProjectedVertex]) {
+    debug_assert_eq!(positions.len(), out.len());
+    let eye = V3::splat(view.eye);
+    let (right, up, forward) = (
+        V3::splat(view.right),
+        V3::splat(view.up),
+        V3::splat(view.forward),
+    );
+    let scale_x = F32x8::splat(view.tan_half_fov * view.aspect);
+    let scale_y = F32x8::splat(view.tan_half_fov);
+    let (one, half) = (F32x8::splat(1.0), F32x8::splat(0.5));
+    let width = F32x8::splat(view.width as f32);
+    let height = F32x8::splat(view.image_height as f32);
+    let row_offset = F32x8::splat(view.row_offset as f32);
+    let (near, guard, subpixel) = (
+        F32x8::splat(NEAR),
+        F32x8::splat(GUARD),
+        F32x8::splat(SUBPIXEL),
+    );
+    for (chunk, out) in positions.chunks(WIDTH).zip(out.chunks_mut(WIDTH)) {
+        // View::to_clip.
+        let d = V3::gather(chunk) - eye;
+        let cx = d.dot(right) / scale_x;
+        let cy = d.dot(up) / scale_y;
+        let w = d.dot(forward);
+        // View::clip_to_pixel, then snapping.
+        let inv_w = one / w;
+        let px = (cx * inv_w + one) * half * width;
+        let py = (one - cy * inv_w) * half * height - row_offset;
+        let (x, y) = (round(px * subpixel), round(py * subpixel));
+        let bit =
+            |mask: F32x8, bit: u32| bytemuck::cast::<_, i32x8>(mask) & i32x8::splat(bit as i32);
+        let inside = w.cmp_ge(near) & cx.abs().cmp_le(guard * w) & cy.abs().cmp_le(guard * w);
+        let code = bit(w.cmp_lt(near), BEHIND)
+            | bit(cx.cmp_gt(w), PAST_RIGHT)
+            | bit(cx.cmp_lt(-w), PAST_LEFT)
+            | bit(cy.cmp_gt(w), PAST_TOP)
+            | bit(cy.cmp_lt(-w), PAST_BOTTOM)
+            | (!bytemuck::cast::<_, i32x8>(inside) & i32x8::splat(NEEDS_CLIP as i32));
+        let (x, y, w, code) = (x.to_array(), y.to_array(), w.to_array(), code.to_array());
+        for (k, out) in out.iter_mut().enumerate() {
+            *out = ProjectedVertex {
+                x: x[k],
+                y: y[k],
+                w: w[k],
+                code: code[k] as u32,
+            };
+        }
+    }
+}
+
+/// [`super::snap::round`] lane by lane, for |v| < 2^31 (other lanes give unspecified values).
+#[inline(always)]
+fn round(v: F32x8) -> i32x8 {
+    let whole = v.trunc_int();
+    // The fractional part of a float is exact.
+    let fraction = v - whole.round_float();
+    let up: i32x8 = bytemuck::cast(fraction.cmp_ge(F32x8::splat(0.5)));
+    let down: i32x8 = bytemuck::cast(fraction.cmp_le(F32x8::splat(-0.5)));
+    // A true mask is −1.
+    whole - up + down
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::{NEEDS_CLIP, ProjectedVertex, project};
+    use crate::render::camera::View;
+    use crate::render::raster::snap::{SUBPIXEL, round};
+    use crate::scene::Camera;
+
+    #[test]
+    fn lanes_project_as_the_scalar_view_does() {
+        let camera = Camera {
+            position: Vec3::new(0.3, 0.4, 3.0),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+            fov: 50.0,
+        };
+        let view = View::new(&camera, 161, 97).rows(13, 40);
+        let positions: Vec<Vec3> = (0..1000)
+            .map(|k| {
+                let t = k as f32 * 0.37;
+                Vec3::new(t.sin() * 2.5, (t * 1.3).cos() * 2.0, (t * 0.7).sin() * 3.5)
+            })
+            .collect();
+        let mut out = vec![ProjectedVertex::default(); positions.len()];
+        project(&view, &positions, &mut out);
+        let mut inside = 0;
+        for (p, v) in positions.iter().zip(&out) {
+            let clip = view.to_clip(*p);
+            assert_eq!(v.w.to_bits(), clip.z.to_bits());
+            if v.code & NEEDS_CLIP == 0 {
+                inside += 1;
+                let pixel = view.clip_to_pixel(clip);
+                assert_eq!(
+                    (v.x, v.y),
+                    (round(pixel.x * SUBPIXEL), round(pixel.y * SUBPIXEL))
+                );
+            }
+        }
+        assert!(
+            inside > 500,
+            "most points are inside the guard band ({inside})"
+        );
+        assert!(inside < 1000, "some points are clipped");
+    }
+}
