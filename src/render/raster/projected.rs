@@ -39,9 +39,75 @@ pub struct ProjectedVertex {
     pub code: u32,
 }
 
+/// The projected vertices of one mesh, field by field (so that lanes store whole vectors and
+/// setup gathers only what it tests).
+#[derive(Debug, Clone, Default)]
+pub struct ProjectedVertices {
+    pub x: Vec<i32>,
+    pub y: Vec<i32>,
+    pub w: Vec<f32>,
+    pub code: Vec<u32>,
+}
+
+impl ProjectedVertices {
+    /// Vertex `i`.
+    #[inline(always)]
+    pub fn get(&self, i: usize) -> ProjectedVertex {
+        ProjectedVertex {
+            x: self.x[i],
+            y: self.y[i],
+            w: self.w[i],
+            code: self.code[i],
+        }
+    }
+
+    /// Makes room for `len` vertices; the values are overwritten by [`project`].
+    pub fn resize(&mut self, len: usize) {
+        self.x.resize(len, 0);
+        self.y.resize(len, 0);
+        self.w.resize(len, 0.0);
+        self.code.resize(len, 0);
+    }
+
+    /// The vertices as disjoint runs of `len`, each with the index of its first vertex, for
+    /// projecting in parallel.
+    pub fn runs_mut(&mut self, len: usize) -> impl Iterator<Item = Run<'_>> {
+        self.x
+            .chunks_mut(len)
+            .zip(self.y.chunks_mut(len))
+            .zip(self.w.chunks_mut(len))
+            .zip(self.code.chunks_mut(len))
+            .enumerate()
+            .map(move |(k, (((x, y), w), code))| Run {
+                first: k * len,
+                x,
+                y,
+                w,
+                code,
+            })
+    }
+}
+
+/// A run of projected vertices to fill.
+pub struct Run<'a> {
+    /// Index of the run's first vertex.
+    pub first: usize,
+    x: &'a mut [i32],
+    y: &'a mut [i32],
+    w: &'a mut [f32],
+    code: &'a mut [u32],
+}
+
+impl Run<'_> {
+    /// Number of vertices in the run.
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+}
+
 /// Projects `positions` (world space) through `view` into `out`, as long.
-pub fn project(view: &View, positions: &[Vec3], out: &mut [ProjectedVertex]) {
-    debug_assert_eq!(positions.len(), out.len());
+pub fn project(view: &View, positions: &[Vec3], out: Run<'_>) {
+    debug_assert_eq!(positions.len(), out.x.len());
     let eye = V3::splat(view.eye);
     let (right, up, forward) = (
         V3::splat(view.right),
@@ -59,9 +125,16 @@ pub fn project(view: &View, positions: &[Vec3], out: &mut [ProjectedVertex]) {
         F32x8::splat(GUARD),
         F32x8::splat(SUBPIXEL),
     );
-    for (chunk, out) in positions.chunks(WIDTH).zip(out.chunks_mut(WIDTH)) {
+    let Run {
+        x: out_x,
+        y: out_y,
+        w: out_w,
+        code: out_code,
+        ..
+    } = out;
+    for (k, chunk) in positions.chunks(WIDTH).enumerate() {
         // View::to_clip.
-        let d = V3::gather(chunk) - eye;
+        let d = gather(chunk) - eye;
         let cx = d.dot(right) / scale_x;
         let cy = d.dot(up) / scale_y;
         let w = d.dot(forward);
@@ -79,16 +152,24 @@ pub fn project(view: &View, positions: &[Vec3], out: &mut [ProjectedVertex]) {
             | bit(cy.cmp_gt(w), PAST_TOP)
             | bit(cy.cmp_lt(-w), PAST_BOTTOM)
             | (!bytemuck::cast::<_, i32x8>(inside) & i32x8::splat(NEEDS_CLIP as i32));
-        let (x, y, w, code) = (x.to_array(), y.to_array(), w.to_array(), code.to_array());
-        for (k, out) in out.iter_mut().enumerate() {
-            *out = ProjectedVertex {
-                x: x[k],
-                y: y[k],
-                w: w[k],
-                code: code[k] as u32,
-            };
-        }
+        let range = k * WIDTH..k * WIDTH + chunk.len();
+        let n = chunk.len();
+        out_x[range.clone()].copy_from_slice(&x.to_array()[..n]);
+        out_y[range.clone()].copy_from_slice(&y.to_array()[..n]);
+        out_w[range.clone()].copy_from_slice(&w.to_array()[..n]);
+        out_code[range].copy_from_slice(&bytemuck::cast::<_, [u32; WIDTH]>(code.to_array())[..n]);
     }
+}
+
+/// Up to eight vectors in lanes; lanes past the last repeat it.
+#[inline(always)]
+fn gather(vectors: &[Vec3]) -> V3<F32x8> {
+    let Ok(eight) = <&[Vec3; WIDTH]>::try_from(vectors) else {
+        return V3::gather(vectors);
+    };
+    let f: &[f32; 3 * WIDTH] = bytemuck::cast_ref(eight);
+    let lane = |c: usize| F32x8::from(std::array::from_fn::<f32, WIDTH, _>(|k| f[3 * k + c]));
+    V3::new(lane(0), lane(1), lane(2))
 }
 
 /// [`super::snap::round`] lane by lane, for |v| < 2^31 (other lanes give unspecified values).
@@ -107,7 +188,7 @@ fn round(v: F32x8) -> i32x8 {
 mod tests {
     use glam::Vec3;
 
-    use super::{NEEDS_CLIP, ProjectedVertex, project};
+    use super::{NEEDS_CLIP, ProjectedVertices, project};
     use crate::render::camera::View;
     use crate::render::raster::snap::{SUBPIXEL, round};
     use crate::scene::Camera;
@@ -127,10 +208,13 @@ mod tests {
                 Vec3::new(t.sin() * 2.5, (t * 1.3).cos() * 2.0, (t * 0.7).sin() * 3.5)
             })
             .collect();
-        let mut out = vec![ProjectedVertex::default(); positions.len()];
-        project(&view, &positions, &mut out);
+        let mut projected = ProjectedVertices::default();
+        projected.resize(positions.len());
+        let run = projected.runs_mut(positions.len()).next().expect("one run");
+        project(&view, &positions, run);
         let mut inside = 0;
-        for (p, v) in positions.iter().zip(&out) {
+        for (i, p) in positions.iter().enumerate() {
+            let v = projected.get(i);
             let clip = view.to_clip(*p);
             assert_eq!(v.w.to_bits(), clip.z.to_bits());
             if v.code & NEEDS_CLIP == 0 {

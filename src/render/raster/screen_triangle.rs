@@ -9,9 +9,12 @@
 
 use glam::{DVec3, Vec2, Vec3, Vec4};
 
-use super::projected::{NEEDS_CLIP, OUTSIDE, ProjectedVertex};
+use wide::{CmpEq, CmpGt, i32x8};
+
+use super::projected::{NEEDS_CLIP, OUTSIDE, ProjectedVertices};
 use super::snap::{GUARD, HALF, SUBPIXEL, SUBPIXEL_BITS, edge, first_centre, last_centre, round};
 use crate::render::camera::{NEAR, View};
+use crate::render::simd::WIDTH;
 
 /// Clipping against the near plane and the four guard-band planes turns a triangle into a polygon
 /// of at most 3 + 5 vertices: a fan of at most this many triangles.
@@ -84,7 +87,7 @@ const OWN_BARY: [Vec2; 3] = [Vec2::ZERO, Vec2::X, Vec2::Y];
 #[allow(clippy::too_many_arguments)]
 pub fn setup_triangle(
     view: &View,
-    projected: &[ProjectedVertex],
+    projected: &ProjectedVertices,
     positions: &[Vec3],
     indices: [u32; 3],
     object: u32,
@@ -92,7 +95,7 @@ pub fn setup_triangle(
     out: &mut Vec<ScreenTriangle>,
     corners: &mut Vec<Corners>,
 ) {
-    let [a, b, c] = indices.map(|i| projected[i as usize]);
+    let [a, b, c] = indices.map(|i| projected.get(i as usize));
     // Trivial reject: all three vertices outside one plane of the view volume.
     if a.code & b.code & c.code & OUTSIDE != 0 {
         return;
@@ -160,6 +163,45 @@ pub fn setup_triangle(
             corners,
         );
     }
+}
+
+/// Which of up to eight `triangles` (vertex indices into `projected`) may cover a pixel centre
+/// of `view`, as bits (lane k is bit k): the cheap tests of [`setup_triangle`] in lanes, so
+/// that the common case at small sizes, a triangle between pixel centres, costs no branch of
+/// its own. A triangle outside one plane of the view volume, or within the guard band but
+/// with no pixel centre inside its bounding box, is dropped; the rest are set up one by one.
+#[inline]
+pub fn may_cover(view: &View, projected: &ProjectedVertices, triangles: &[[u32; 3]]) -> u32 {
+    debug_assert!((1..=WIDTH).contains(&triangles.len()));
+    let last = triangles.len() - 1;
+    let mut x = [[0i32; WIDTH]; 3];
+    let mut y = [[0i32; WIDTH]; 3];
+    let mut code = [[0i32; WIDTH]; 3];
+    for lane in 0..WIDTH {
+        let t = triangles[lane.min(last)];
+        for k in 0..3 {
+            let i = t[k] as usize;
+            x[k][lane] = projected.x[i];
+            y[k][lane] = projected.y[i];
+            code[k][lane] = projected.code[i] as i32;
+        }
+    }
+    let [x0, x1, x2] = x.map(i32x8::from);
+    let [y0, y1, y2] = y.map(i32x8::from);
+    let [c0, c1, c2] = code.map(i32x8::from);
+    let zero = i32x8::splat(0);
+    let not_outside = (c0 & c1 & c2 & i32x8::splat(OUTSIDE as i32)).cmp_eq(zero);
+    let clipped = !((c0 | c1 | c2) & i32x8::splat(NEEDS_CLIP as i32)).cmp_eq(zero);
+    // first_centre and last_centre: floor division by 256 is an arithmetic shift.
+    let first = |lo: i32x8| (lo + i32x8::splat((1 << SUBPIXEL_BITS) - 1 - HALF)) >> SUBPIXEL_BITS;
+    let last_c = |hi: i32x8| (hi - i32x8::splat(HALF)) >> SUBPIXEL_BITS;
+    let min_x = first(x0.min(x1).min(x2)).max(zero);
+    let max_x = last_c(x0.max(x1).max(x2)).min(i32x8::splat(view.width as i32 - 1));
+    let min_y = first(y0.min(y1).min(y2)).max(zero);
+    let max_y = last_c(y0.max(y1).max(y2)).min(i32x8::splat(view.height as i32 - 1));
+    let empty = min_x.cmp_gt(max_x) | min_y.cmp_gt(max_y);
+    let keep = not_outside & (clipped | !empty);
+    (keep.move_mask() as u32) & ((1 << triangles.len()) - 1)
 }
 
 /// Orients a snapped triangle (fixed-point `x`, `y`, clip w, barycentrics on its mesh

@@ -6,10 +6,11 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::projected::{ProjectedVertex, project};
-use super::screen_triangle::{Corners, MAX_FAN, ScreenTriangle, setup_triangle};
+use super::projected::{ProjectedVertices, project};
+use super::screen_triangle::{Corners, MAX_FAN, ScreenTriangle, may_cover, setup_triangle};
 use super::varying::Varying;
 use crate::render::camera::View;
+use crate::render::simd::WIDTH;
 use crate::world::World;
 
 /// Vertices per parallel task of the vertex stage.
@@ -35,7 +36,7 @@ pub struct RasterScratch {
 #[derive(Debug, Default)]
 pub struct Geometry {
     /// Projected vertices, per object.
-    projected: Vec<Vec<ProjectedVertex>>,
+    projected: Vec<ProjectedVertices>,
     /// The setup tasks and their screen triangles.
     chunks: Vec<SetupChunk>,
     /// Screen triangle ids per band of [`BAND_ROWS`] rows, in triangle order.
@@ -89,17 +90,23 @@ impl Geometry {
             let projected = &projected[chunk.object];
             chunk.triangles.clear();
             chunk.corners.clear();
-            for t in chunk.start..chunk.end {
-                setup_triangle(
-                    view,
-                    projected,
-                    &mesh.positions,
-                    mesh.triangles[t],
-                    chunk.object as u32,
-                    t as u32,
-                    &mut chunk.triangles,
-                    &mut chunk.corners,
-                );
+            for first in (chunk.start..chunk.end).step_by(WIDTH) {
+                let group = &mesh.triangles[first..(first + WIDTH).min(chunk.end)];
+                let mut lanes = may_cover(view, projected, group);
+                while lanes != 0 {
+                    let lane = lanes.trailing_zeros() as usize;
+                    lanes &= lanes - 1;
+                    setup_triangle(
+                        view,
+                        projected,
+                        &mesh.positions,
+                        group[lane],
+                        chunk.object as u32,
+                        (first + lane) as u32,
+                        &mut chunk.triangles,
+                        &mut chunk.corners,
+                    );
+                }
             }
         });
         let mut needed = vec![0; world.objects.len()];
@@ -135,14 +142,18 @@ impl Geometry {
 
     /// The vertex stage: every vertex of every object projected once.
     fn project(&mut self, world: &World, view: &View) {
-        self.projected.resize_with(world.objects.len(), Vec::new);
+        self.projected
+            .resize_with(world.objects.len(), ProjectedVertices::default);
         for (o, projected) in world.objects.iter().zip(&mut self.projected) {
             let positions = &o.mesh.positions;
-            projected.resize(positions.len(), ProjectedVertex::default());
+            projected.resize(positions.len());
             projected
-                .par_chunks_mut(VERTEX_CHUNK)
-                .zip(positions.par_chunks(VERTEX_CHUNK))
-                .for_each(|(out, positions)| project(view, positions, out));
+                .runs_mut(VERTEX_CHUNK)
+                .par_bridge()
+                .for_each(|run| {
+                    let vertices = &positions[run.first..run.first + run.len()];
+                    project(view, vertices, run)
+                });
         }
     }
 
