@@ -153,11 +153,19 @@ pub fn project(view: &View, positions: &[Vec3], out: Run<'_>) {
             | bit(cy.cmp_lt(-w), PAST_BOTTOM)
             | (!bytemuck::cast::<_, i32x8>(inside) & i32x8::splat(NEEDS_CLIP as i32));
         let range = k * WIDTH..k * WIDTH + chunk.len();
-        let n = chunk.len();
-        out_x[range.clone()].copy_from_slice(&x.to_array()[..n]);
-        out_y[range.clone()].copy_from_slice(&y.to_array()[..n]);
-        out_w[range.clone()].copy_from_slice(&w.to_array()[..n]);
-        out_code[range].copy_from_slice(&bytemuck::cast::<_, [u32; WIDTH]>(code.to_array())[..n]);
+        store(&mut out_x[range.clone()], x.to_array());
+        store(&mut out_y[range.clone()], y.to_array());
+        store(&mut out_w[range.clone()], w.to_array());
+        store(&mut out_code[range], bytemuck::cast(code.to_array()));
+    }
+}
+
+/// Stores the first `out.len()` lanes (at most eight) into `out`: eight as one fixed-size copy.
+#[inline(always)]
+fn store<T: Copy>(out: &mut [T], lanes: [T; WIDTH]) {
+    match <&mut [T; WIDTH]>::try_from(&mut *out) {
+        Ok(all) => *all = lanes,
+        Err(_) => out.copy_from_slice(&lanes[..out.len()]),
     }
 }
 
@@ -167,9 +175,9 @@ fn gather(vectors: &[Vec3]) -> V3<F32x8> {
     let Ok(eight) = <&[Vec3; WIDTH]>::try_from(vectors) else {
         return V3::gather(vectors);
     };
-    let f: &[f32; 3 * WIDTH] = bytemuck::cast_ref(eight);
-    let lane = |c: usize| F32x8::from(std::array::from_fn::<f32, WIDTH, _>(|k| f[3 * k + c]));
-    V3::new(lane(0), lane(1), lane(2))
+    // A fixed-size array: the loads are plain moves, with no index arithmetic.
+    let lane = |c: fn(&Vec3) -> f32| F32x8::from(eight.map(|v| c(&v)));
+    V3::new(lane(|v| v.x), lane(|v| v.y), lane(|v| v.z))
 }
 
 /// [`super::snap::round`] lane by lane, for |v| < 2^31 (other lanes give unspecified values).
