@@ -15,7 +15,7 @@ use super::frame::{Frame, box_filter};
 use super::options::RenderOptions;
 use super::prepared::Prepared;
 use super::progress::{Cancelled, Progress};
-use super::raster::{raster_coverage, render_gouraud, render_phong};
+use super::raster::{RasterScratch, raster_coverage, render_gouraud, render_phong};
 use super::ray::{primary_coverage, trace_into};
 use super::scratch::Scratch;
 use super::stats::{RayCounts, RenderStats};
@@ -187,9 +187,11 @@ fn render_frame(
     let (prepared, mut stats) = prepare_scene(scene, world, options.algorithm, progress)?;
     let world = prepared.world();
     let no_rays = RayCounts::default;
-    let draw = |view: &View, out: &mut [Vec3]| match options.algorithm {
-        Algorithm::Gouraud => render_gouraud(world, view, progress, out).map(|()| no_rays()),
-        Algorithm::Phong => render_phong(world, view, progress, out).map(|()| no_rays()),
+    let draw = |raster: &mut RasterScratch, view: &View, out: &mut [Vec3]| match options.algorithm {
+        Algorithm::Gouraud => {
+            render_gouraud(raster, world, view, progress, out).map(|()| no_rays())
+        }
+        Algorithm::Phong => render_phong(raster, world, view, progress, out).map(|()| no_rays()),
         Algorithm::Ray => {
             let accel = prepared.accel().expect("prepared for the ray tracer");
             trace_into(accel, world, view, options, progress, out)
@@ -197,9 +199,12 @@ fn render_frame(
     };
     // Coverage, for alpha, by the algorithm's own test: the rasterizer's depth buffer (drawn
     // into `work`) or the primary rays' hits.
-    let cover = |view: &View, work: &mut [Vec3], covered: &mut [f32]| match options.algorithm {
+    let cover = |raster: &mut RasterScratch,
+                 view: &View,
+                 work: &mut [Vec3],
+                 covered: &mut [f32]| match options.algorithm {
         Algorithm::Gouraud | Algorithm::Phong => {
-            raster_coverage(world, view, progress, work, covered)
+            raster_coverage(raster, world, view, progress, work, covered)
         }
         Algorithm::Ray => {
             let accel = prepared.accel().expect("prepared for the ray tracer");
@@ -208,15 +213,16 @@ fn render_frame(
     };
     // Draws `view` into `out`; with alpha, finds the coverage first and leaves the background
     // out of the colours, which are then premultiplied.
-    let draw_covered = |view: &View, out: &mut [Vec3], covered: Option<&mut [f32]>| {
-        let Some(covered) = covered else {
-            return draw(view, out);
+    let draw_covered =
+        |raster: &mut RasterScratch, view: &View, out: &mut [Vec3], covered: Option<&mut [f32]>| {
+            let Some(covered) = covered else {
+                return draw(raster, view, out);
+            };
+            cover(raster, view, out, covered)?;
+            let cast = draw(raster, view, out)?;
+            leave_out_background(out, covered);
+            Ok(cast)
         };
-        cover(view, out, covered)?;
-        let cast = draw(view, out)?;
-        leave_out_background(out, covered);
-        Ok(cast)
-    };
     let width = options.width as usize;
     let mut rays = RayCounts::default();
     // Supersampled strips are drawn into one scratch strip and box-filtered into the frame;
@@ -227,17 +233,21 @@ fn render_frame(
         let range = first as usize * width..(first + rows) as usize * width;
         let out = &mut frame.pixels[range.clone()];
         let alpha = frame.alpha.as_deref_mut().map(|a| &mut a[range]);
+        let Scratch {
+            samples,
+            coverage,
+            raster,
+        } = &mut *scratch;
         let cast = if n == 1 {
-            draw_covered(&view, out, alpha)?
+            draw_covered(raster, &view, out, alpha)?
         } else {
-            let Scratch { samples, coverage } = &mut *scratch;
             let len = view.width as usize * view.height as usize;
             samples.resize(len, Vec3::ZERO);
             let covered = alpha.is_some().then(|| {
                 coverage.resize(len, 0.0);
                 &mut coverage[..]
             });
-            let cast = draw_covered(&view, samples, covered)?;
+            let cast = draw_covered(raster, &view, samples, covered)?;
             let filtering = Instant::now();
             box_filter(samples, view.width, n, out);
             if let Some(alpha) = alpha {

@@ -3,6 +3,8 @@
 
 use glam::Vec3;
 
+use super::raster::RasterScratch;
+
 /// Buffers reused by every render of one [`crate::render::Renderer`].
 #[derive(Debug, Default)]
 pub(super) struct Scratch {
@@ -10,4 +12,6 @@ pub(super) struct Scratch {
     pub(super) samples: Vec<Vec3>,
     /// The coverage of that strip's samples (1 covered, 0 not), when alpha is rendered.
     pub(super) coverage: Vec<f32>,
+    /// The Z-buffer's projected vertices, screen triangles and bins.
+    pub(super) raster: RasterScratch,
 }

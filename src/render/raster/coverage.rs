@@ -4,6 +4,8 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::setup::RasterScratch;
+use super::varying::PerVertex;
 use super::zbuffer::draw;
 use crate::render::camera::View;
 use crate::render::progress::{Cancelled, Progress};
@@ -17,6 +19,7 @@ const COVERED: Vec3 = Vec3::splat(f32::NAN);
 /// Writes 1 into `covered` where some triangle of `world` covers the pixel centre of `view`
 /// and 0 elsewhere (`view.width`×`view.height` values); `work` is as large and is overwritten.
 pub fn raster_coverage(
+    scratch: &mut RasterScratch,
     world: &World,
     view: &View,
     progress: &Progress,
@@ -27,12 +30,12 @@ pub fn raster_coverage(
         world.background.is_finite(),
         "a background is a finite colour"
     );
-    let normals: Vec<&[Vec3]> = world.objects.iter().map(|o| &o.mesh.normals[..]).collect();
     draw(
+        &mut scratch.geometry,
         world,
         view,
         progress,
-        &normals,
+        &mut PerVertex::normals(world),
         |fragments, row| fragments.write(V3::splat(COVERED), row),
         work,
     )?;

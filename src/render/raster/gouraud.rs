@@ -1,31 +1,49 @@
 //! Z-buffer with Gouraud shading: light the vertices, interpolate the colour.
+//!
+//! Only vertices of triangles that survive setup are lit: at the editor's preview size most
+//! triangles of a real mesh cover no pixel centre. Where most of an object's vertices are
+//! needed anyway, the whole object is lit at once, in order.
 
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::setup::RasterScratch;
+use super::varying::Varying;
 use super::zbuffer::draw;
 use crate::render::camera::View;
-use crate::render::materials::ObjectMaterials;
+use crate::render::materials::{MaterialLanes, ObjectMaterials};
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::shading::Lighting;
-use crate::render::simd::{V3, WIDTH};
+use crate::render::simd::{F32x8, V3, WIDTH};
 use crate::world::World;
 
 /// Renders `world` through `view` into `out` (`view.width`×`view.height` pixels).
 pub fn render_gouraud(
+    scratch: &mut RasterScratch,
     world: &World,
     view: &View,
     progress: &Progress,
     out: &mut [Vec3],
 ) -> Result<(), Cancelled> {
-    let colors = vertex_colors(world, view);
-    let colors: Vec<&[Vec3]> = colors.iter().map(Vec::as_slice).collect();
+    let RasterScratch {
+        geometry,
+        per_vertex,
+    } = scratch;
+    let mut colors = LitVertices {
+        world,
+        eye: view.eye,
+        lighting: Lighting::new(world),
+        materials: ObjectMaterials::new(world),
+        whole: per_vertex,
+        lit_whole: vec![false; world.objects.len()],
+    };
     // Fragment stage: the interpolated colour is the pixel's colour.
     draw(
+        geometry,
         world,
         view,
         progress,
-        &colors,
+        &mut colors,
         |fragments, row| {
             fragments.write(fragments.varying, row);
         },
@@ -33,28 +51,104 @@ pub fn render_gouraud(
     )
 }
 
-/// Vertex stage: every vertex lit with its normal, seen from the eye; `[object][vertex]`.
-fn vertex_colors(world: &World, view: &View) -> Vec<Vec<Vec3>> {
-    let lighting = Lighting::new(world);
-    let materials = ObjectMaterials::new(world);
-    world
-        .objects
-        .par_iter()
-        .zip(&materials.lanes)
-        .map(|(o, material)| {
-            let mut colors = Vec::with_capacity(o.mesh.positions.len());
-            for (p, n) in o
-                .mesh
-                .positions
-                .chunks(WIDTH)
-                .zip(o.mesh.normals.chunks(WIDTH))
-            {
-                let (count, p, n) = (p.len(), V3::gather(p), V3::gather(n));
-                let v = (V3::splat(view.eye) - p).normalize_or_zero();
-                let c = lighting.shade_lanes(p, n, v, material, |_, _, facing| facing);
-                colors.extend_from_slice(&c.to_vec3s()[..count]);
+/// The vertex stage of Gouraud shading as a varying: each vertex lit with its normal, seen from
+/// the eye. Lanes are independent, so a vertex gets the same colour whichever vertices share
+/// its lanes.
+struct LitVertices<'a> {
+    world: &'a World,
+    eye: Vec3,
+    lighting: Lighting<'a>,
+    materials: ObjectMaterials,
+    /// Colours of every vertex, `[object][vertex]`, for the objects lit whole.
+    whole: &'a mut Vec<Vec<Vec3>>,
+    /// Which objects were lit whole this frame.
+    lit_whole: Vec<bool>,
+}
+
+impl LitVertices<'_> {
+    /// Colours of the eight vertices `p`, `n` of `object`.
+    #[inline(always)]
+    fn light(&self, material: &MaterialLanes<F32x8>, p: V3<F32x8>, n: V3<F32x8>) -> V3<F32x8> {
+        let v = (V3::splat(self.eye) - p).normalize_or_zero();
+        self.lighting
+            .shade_lanes(p, n, v, material, |_, _, facing| facing)
+    }
+}
+
+impl Varying for LitVertices<'_> {
+    fn prepare(&mut self, triangles_needed: &[usize]) {
+        let lit: Vec<bool> = self
+            .world
+            .objects
+            .iter()
+            .zip(triangles_needed)
+            .map(|(o, &needed)| 3 * needed >= o.mesh.positions.len())
+            .collect();
+        let mut whole = std::mem::take(&mut *self.whole);
+        whole.resize_with(self.world.objects.len(), Vec::new);
+        let this = &*self;
+        whole
+            .par_iter_mut()
+            .zip(&self.world.objects)
+            .zip(&self.materials.lanes)
+            .zip(&lit)
+            .filter(|(_, lit)| **lit)
+            .for_each(|(((colors, o), material), _)| {
+                colors.clear();
+                colors.reserve(o.mesh.positions.len());
+                for (p, n) in o
+                    .mesh
+                    .positions
+                    .chunks(WIDTH)
+                    .zip(o.mesh.normals.chunks(WIDTH))
+                {
+                    let count = p.len();
+                    let c = this.light(material, V3::gather(p), V3::gather(n));
+                    colors.extend_from_slice(&c.to_vec3s()[..count]);
+                }
+            });
+        *self.whole = whole;
+        self.lit_whole = lit;
+    }
+
+    fn corners(&self, object: usize, triangles: &[u32], out: &mut Vec<[Vec3; 3]>) {
+        let mesh = &self.world.objects[object].mesh;
+        if self.lit_whole[object] {
+            let colors = &self.whole[object];
+            out.extend(
+                triangles
+                    .iter()
+                    .map(|&t| mesh.triangles[t as usize].map(|i| colors[i as usize])),
+            );
+            return;
+        }
+        let material = &self.materials.lanes[object];
+        let start = out.len();
+        out.resize(start + triangles.len(), [Vec3::ZERO; 3]);
+        let colors: &mut [Vec3] = bytemuck::cast_slice_mut(&mut out[start..]);
+        let mut vertices = triangles
+            .iter()
+            .flat_map(|&t| mesh.triangles[t as usize])
+            .map(|i| i as usize);
+        for colors in colors.chunks_mut(WIDTH) {
+            let mut ids = [0; WIDTH];
+            for id in &mut ids[..colors.len()] {
+                *id = vertices.next().expect("three vertices per triangle");
             }
-            colors
-        })
-        .collect()
+            // Lanes past the last vertex repeat it.
+            for k in colors.len()..WIDTH {
+                ids[k] = ids[colors.len() - 1];
+            }
+            let gather = |values: &[Vec3]| {
+                let v = ids.map(|i| values[i]);
+                V3::new(
+                    F32x8::from(v.map(|v| v.x)),
+                    F32x8::from(v.map(|v| v.y)),
+                    F32x8::from(v.map(|v| v.z)),
+                )
+            };
+            let lit = self.light(material, gather(&mesh.positions), gather(&mesh.normals));
+            colors.copy_from_slice(&lit.to_vec3s()[..colors.len()]);
+        }
+    }
 }

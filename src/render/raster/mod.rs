@@ -6,11 +6,17 @@ mod coverage;
 mod fragments;
 mod gouraud;
 mod phong;
+mod projected;
+mod screen_triangle;
+mod setup;
+mod snap;
+mod varying;
 mod zbuffer;
 
 pub(crate) use coverage::raster_coverage;
 pub(crate) use gouraud::render_gouraud;
 pub(crate) use phong::render_phong;
+pub(crate) use setup::RasterScratch;
 #[cfg(test)]
 pub(crate) use zbuffer::coverage_counts;
 

@@ -2,6 +2,8 @@
 
 use glam::Vec3;
 
+use super::setup::RasterScratch;
+use super::varying::PerVertex;
 use super::zbuffer::draw;
 use crate::render::camera::View;
 use crate::render::materials::ObjectMaterials;
@@ -12,6 +14,7 @@ use crate::world::World;
 
 /// Renders `world` through `view` into `out` (`view.width`×`view.height` pixels).
 pub fn render_phong(
+    scratch: &mut RasterScratch,
     world: &World,
     view: &View,
     progress: &Progress,
@@ -22,12 +25,12 @@ pub fn render_phong(
     // The varying is the vertex normal. The surface point is found on the pixel's ray at the
     // interpolated depth, which is the perspective-correct interpolated position, and the very
     // point the ray tracer's primary ray meets.
-    let normals: Vec<&[Vec3]> = world.objects.iter().map(|o| &o.mesh.normals[..]).collect();
     draw(
+        &mut scratch.geometry,
         world,
         view,
         progress,
-        &normals,
+        &mut PerVertex::normals(world),
         |fragments, row| {
             let x = F32x8::from(fragments.x.map(|c| c as f32 + 0.5));
             let ray = view.pixel_direction(x, F32x8::splat(fragments.y as f32 + 0.5));

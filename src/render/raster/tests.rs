@@ -8,6 +8,8 @@ use std::sync::Arc;
 use glam::{Affine3A, Quat, Vec3};
 
 use super::fragments::Fragments;
+use super::setup::{Geometry, RasterScratch};
+use super::varying::PerVertex;
 use super::zbuffer::{coverage_counts, draw};
 use super::{render_gouraud, render_phong};
 use crate::mesh::{FaceList, with_normals};
@@ -178,14 +180,23 @@ material = { color = [0.5, 0.5, 0.5] }
         }
     }
     // Depth check against the analytic exit distance of each ray from the box.
-    let normals: Vec<&[Vec3]> = world.objects.iter().map(|o| &o.mesh.normals[..]).collect();
+    let mut normals = PerVertex::normals(&world);
     let progress = Progress::new();
     let mut drawn = vec![Vec3::NAN; 64 * 48];
     let write_depth = |fragments: &Fragments, row: &mut [Vec3]| {
         let depth = fragments.depth;
         fragments.write(V3::new(depth, depth, depth), row)
     };
-    draw(&world, &view, &progress, &normals, write_depth, &mut drawn).expect("draw");
+    draw(
+        &mut Geometry::default(),
+        &world,
+        &view,
+        &progress,
+        &mut normals,
+        write_depth,
+        &mut drawn,
+    )
+    .expect("draw");
     let depths: Vec<f32> = drawn.iter().map(|d| d.x).collect();
     for y in 0..48u32 {
         for x in 0..64u32 {
@@ -219,12 +230,16 @@ fn strips_rendered_separately_join_into_the_whole_image() {
     let world = world(&scene);
     let whole = View::new(&scene.camera, 160, 97);
     let progress = Progress::new();
+    // One scratch for all renders, as a renderer keeps it: nothing may leak between frames.
+    let mut scratch = RasterScratch::default();
     for algorithm in [Algorithm::Gouraud, Algorithm::Phong] {
-        let draw = |view: &View| {
+        let mut draw = |view: &View| {
             let mut out = vec![Vec3::NAN; view.width as usize * view.height as usize];
             match algorithm {
-                Algorithm::Gouraud => render_gouraud(&world, view, &progress, &mut out),
-                _ => render_phong(&world, view, &progress, &mut out),
+                Algorithm::Gouraud => {
+                    render_gouraud(&mut scratch, &world, view, &progress, &mut out)
+                }
+                _ => render_phong(&mut scratch, &world, view, &progress, &mut out),
             }
             .expect("render");
             out

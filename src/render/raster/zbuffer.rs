@@ -14,110 +14,19 @@
 
 use std::ops::Range;
 
-use glam::{DVec4, Vec2, Vec3, Vec4};
+use glam::Vec3;
 use rayon::prelude::*;
 
 use super::fragments::{Fragments, Packer};
-use crate::render::camera::{NEAR, View};
+use super::screen_triangle::ScreenTriangle;
+use super::setup::{BAND_ROWS, Geometry, ScreenTriangles};
+use super::snap::{HALF, SUBPIXEL_BITS, edge};
+use super::varying::Varying;
+use crate::render::camera::View;
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::simd::{F32x8, WIDTH, load};
 use crate::world::World;
 use wide::{CmpGe, u32x8};
-
-/// Sub-pixel precision of snapped vertex coordinates: 1/256 pixel.
-const SUBPIXEL_BITS: u32 = 8;
-const SUBPIXEL: f32 = (1 << SUBPIXEL_BITS) as f32;
-/// Rows per band: the unit of parallel work and of progress.
-const BAND_ROWS: u32 = 8;
-/// Triangles are clipped to |x|, |y| ≤ GUARD·w, which keeps snapped coordinates far inside i32 and
-/// edge-function products inside i64 for every image size the options accept.
-const GUARD: f32 = 4.0;
-/// Triangles per parallel setup task.
-const SETUP_CHUNK: usize = 4096;
-/// Bits of a screen triangle's index within its setup chunk (see [`ScreenTriangles`]).
-const INDEX_BITS: u32 = 15;
-/// Clipping against the near plane and the four guard-band planes turns a triangle into a polygon
-/// of at most 3 + 5 vertices: a fan of at most this many triangles.
-const MAX_FAN: usize = 6;
-const _: () = assert!(SETUP_CHUNK * MAX_FAN < 1 << INDEX_BITS);
-
-/// A triangle ready for scan conversion: snapped, counter-clockwise in fixed point, with the
-/// screen-space plane of its interpolants.
-///
-/// The interpolants are (varying·1/w, 1/w): both are affine in screen space, so each is a plane
-/// `at_ref + per_x·(x − ref_x) + per_y·(y − ref_y)` over pixel centres, and dividing by the
-/// fourth gives the perspective-correct varying. The reference is the pixel holding vertex 0, so
-/// strips of an image evaluate the planes exactly as the whole image does.
-#[derive(Debug, Clone, Copy)]
-struct ScreenTriangle {
-    /// Vertex pixel coordinates in 1/256 pixel.
-    x: [i32; 3],
-    y: [i32; 3],
-    /// Inclusive pixel bounds, inside the image.
-    min_x: i32,
-    max_x: i32,
-    min_y: i32,
-    max_y: i32,
-    /// The reference pixel.
-    ref_x: i32,
-    ref_y: i32,
-    /// Interpolants at the reference pixel's centre, and their change per pixel right and down.
-    at_ref: Vec4,
-    per_x: Vec4,
-    per_y: Vec4,
-    object: u32,
-}
-
-impl ScreenTriangle {
-    /// (varying·1/w, 1/w) at the centre of pixel (x, y).
-    #[inline(always)]
-    fn interpolants(&self, x: i32, y: i32) -> Vec4 {
-        self.at_ref + self.per_x * (x - self.ref_x) as f32 + self.per_y * (y - self.ref_y) as f32
-    }
-}
-
-/// The screen triangles of a frame, kept in the chunks that set them up in parallel (joining
-/// them would copy a hundred megabytes for a million-triangle mesh). A triangle's id is its chunk
-/// times 2^[`INDEX_BITS`] plus its index in the chunk; ids increase in triangle order.
-#[derive(Debug, Default)]
-struct ScreenTriangles {
-    chunks: Vec<Vec<ScreenTriangle>>,
-}
-
-impl ScreenTriangles {
-    /// The triangle with id `id`.
-    #[inline(always)]
-    fn get(&self, id: u32) -> &ScreenTriangle {
-        &self.chunks[(id >> INDEX_BITS) as usize][(id & ((1 << INDEX_BITS) - 1)) as usize]
-    }
-
-    /// Every triangle with its id, in triangle order.
-    fn iter(&self) -> impl Iterator<Item = (u32, &ScreenTriangle)> {
-        self.chunks.iter().enumerate().flat_map(|(c, chunk)| {
-            let first = (c as u32) << INDEX_BITS;
-            chunk
-                .iter()
-                .enumerate()
-                .map(move |(i, t)| (first + i as u32, t))
-        })
-    }
-}
-
-/// A clip-space vertex during clipping: position (x, y, w) and barycentrics on the original triangle.
-#[derive(Debug, Clone, Copy)]
-struct ClipVertex {
-    pos: Vec3,
-    bary: Vec2,
-}
-
-impl ClipVertex {
-    fn lerp(self, other: ClipVertex, t: f32) -> ClipVertex {
-        ClipVertex {
-            pos: self.pos.lerp(other.pos, t),
-            bary: self.bary.lerp(other.bary, t),
-        }
-    }
-}
 
 /// Per-band buffers, reused by each worker thread from band to band.
 #[derive(Debug, Default)]
@@ -129,24 +38,24 @@ struct BandBuffers {
 }
 
 /// Draws `world` seen through `view` into `out` (`view.width`×`view.height` pixels, every one
-/// written). Each band of rows is scan-converted with a depth test on
-/// 1/w, keeping the nearest triangle per pixel centre; then the covered pixels of each row are
-/// handed to `shade` eight at a time as [`Fragments`], with `varyings[object][vertex]`
+/// written), with `geometry` as working memory. Each band of rows is scan-converted with a
+/// depth test on 1/w, keeping the nearest triangle per pixel centre; then the covered pixels of
+/// each row are handed to `shade` eight at a time as [`Fragments`], with `varying`
 /// interpolated perspective-correctly, and `shade` writes their colours into the row. Uncovered
 /// pixels get the background. Shading after the depth test shades each pixel once however much
 /// overdraw the scene has, and shading right after each band keeps the band's buffers in cache.
 pub fn draw(
+    geometry: &mut Geometry,
     world: &World,
     view: &View,
     progress: &Progress,
-    varyings: &[&[Vec3]],
+    varying: &mut dyn Varying,
     shade: impl Fn(&Fragments, &mut [Vec3]) + Sync,
     out: &mut [Vec3],
 ) -> Result<(), Cancelled> {
-    let (width, height) = (view.width, view.height);
-    debug_assert_eq!(out.len(), width as usize * height as usize);
-    let triangles = setup(world, view, varyings);
-    let bins = bin(&triangles, height);
+    let width = view.width;
+    debug_assert_eq!(out.len(), width as usize * view.height as usize);
+    let (triangles, bins) = geometry.set_up(world, view, varying);
     out.par_chunks_mut((BAND_ROWS * width) as usize)
         .zip(bins.par_iter())
         .enumerate()
@@ -159,30 +68,23 @@ pub fn draw(
             depth.resize(rows.len(), 0.0);
             id.clear();
             id.resize(rows.len(), 0);
-            scan_band(
-                &triangles,
-                bin,
-                width,
-                top,
-                band_rows,
-                |span, x, y, i, t| {
-                    let z0 = t.interpolants(x, y).w;
-                    depth_test(
-                        &mut depth[span.clone()],
-                        &mut id[span],
-                        z0,
-                        t.per_x.w,
-                        i + 1,
-                    );
-                },
-            );
+            scan_band(triangles, bin, width, top, band_rows, |span, x, y, i, t| {
+                let z0 = t.interpolants(x, y).w;
+                depth_test(
+                    &mut depth[span.clone()],
+                    &mut id[span],
+                    z0,
+                    t.per_x.w,
+                    i + 1,
+                );
+            });
             for (r, (out, ids)) in rows
                 .chunks_mut(width as usize)
                 .zip(id.chunks(width as usize))
                 .enumerate()
             {
                 let y = top + r as u32;
-                shade_row(&triangles, ids, y, world.background, &shade, out);
+                shade_row(triangles, ids, y, world.background, &shade, out);
             }
             progress.advance(band_rows as u64);
             Ok(())
@@ -193,7 +95,7 @@ pub fn draw(
 /// runs of one triangle go to `shade` as whole spans of eight, the rest packed into lanes.
 #[inline]
 fn shade_row(
-    triangles: &ScreenTriangles,
+    triangles: ScreenTriangles<'_>,
     ids: &[u32],
     y: u32,
     background: Vec3,
@@ -264,9 +166,9 @@ fn depth_test(depth: &mut [f32], ids: &mut [u32], z0: f32, dz: f32, id: u32) {
 #[cfg(test)]
 pub fn coverage_counts(world: &World, view: &View) -> Vec<u32> {
     let (width, height) = (view.width, view.height);
-    let normals: Vec<&[Vec3]> = world.objects.iter().map(|o| &o.mesh.normals[..]).collect();
-    let triangles = setup(world, view, &normals);
-    let bins = bin(&triangles, height);
+    let mut geometry = Geometry::default();
+    let mut normals = super::varying::PerVertex::normals(world);
+    let (triangles, bins) = geometry.set_up(world, view, &mut normals);
     let mut counts = vec![0u32; width as usize * height as usize];
     counts
         .par_chunks_mut((BAND_ROWS * width) as usize)
@@ -275,229 +177,11 @@ pub fn coverage_counts(world: &World, view: &View) -> Vec<u32> {
         .for_each(|(band, (rows, bin))| {
             let top = band as u32 * BAND_ROWS;
             let band_rows = rows.len() as u32 / width;
-            scan_band(
-                &triangles,
-                bin,
-                width,
-                top,
-                band_rows,
-                |span, _, _, _, _| {
-                    rows[span].iter_mut().for_each(|count| *count += 1);
-                },
-            );
+            scan_band(triangles, bin, width, top, band_rows, |span, _, _, _, _| {
+                rows[span].iter_mut().for_each(|count| *count += 1);
+            });
         });
     counts
-}
-
-/// Vertex stage and triangle setup for every triangle of the world, in object then triangle
-/// order, carrying `varyings[object][vertex]`.
-fn setup(world: &World, view: &View, varyings: &[&[Vec3]]) -> ScreenTriangles {
-    debug_assert_eq!(varyings.len(), world.objects.len());
-    let clip: Vec<Vec<Vec3>> = world
-        .objects
-        .par_iter()
-        .map(|o| {
-            o.mesh
-                .positions
-                .par_iter()
-                .map(|&p| view.to_clip(p))
-                .collect()
-        })
-        .collect();
-    let mut jobs = Vec::new();
-    for (object, o) in world.objects.iter().enumerate() {
-        let n = o.mesh.triangles.len();
-        for start in (0..n).step_by(SETUP_CHUNK) {
-            jobs.push((object, start..(start + SETUP_CHUNK).min(n)));
-        }
-    }
-    let chunks: Vec<Vec<ScreenTriangle>> = jobs
-        .par_iter()
-        .map(|(object, range)| {
-            let mesh = &world.objects[*object].mesh;
-            let (clip, varying) = (&clip[*object], varyings[*object]);
-            let mut out = Vec::with_capacity(range.len());
-            for t in range.clone() {
-                let corners = mesh.triangles[t].map(|i| i as usize);
-                let v = corners.map(|i| clip[i]);
-                let a = corners.map(|i| varying[i]);
-                setup_triangle(view, v, a, *object as u32, &mut out);
-            }
-            out
-        })
-        .collect();
-    ScreenTriangles { chunks }
-}
-
-/// Clips one triangle (clip-space corners `v`, vertex varyings `a`) and pushes the screen
-/// triangles it yields (0, 1 or a fan of several).
-fn setup_triangle(
-    view: &View,
-    v: [Vec3; 3],
-    a: [Vec3; 3],
-    object: u32,
-    out: &mut Vec<ScreenTriangle>,
-) {
-    // Trivial reject: all three vertices outside one plane of the view volume.
-    let outside = |f: &dyn Fn(Vec3) -> bool| v.iter().all(|&p| f(p));
-    if outside(&|p| p.z < NEAR)
-        || outside(&|p| p.x > p.z)
-        || outside(&|p| p.x < -p.z)
-        || outside(&|p| p.y > p.z)
-        || outside(&|p| p.y < -p.z)
-    {
-        return;
-    }
-    let corners = [
-        ClipVertex {
-            pos: v[0],
-            bary: Vec2::ZERO,
-        },
-        ClipVertex {
-            pos: v[1],
-            bary: Vec2::X,
-        },
-        ClipVertex {
-            pos: v[2],
-            bary: Vec2::Y,
-        },
-    ];
-    let inside_all = |p: Vec3| p.z >= NEAR && p.x.abs() <= GUARD * p.z && p.y.abs() <= GUARD * p.z;
-    if v.iter().all(|&p| inside_all(p)) {
-        emit(view, corners, a, object, out);
-        return;
-    }
-    // Sutherland–Hodgman in homogeneous space: near plane, then the guard band.
-    let planes: [fn(Vec3) -> f32; 5] = [
-        |p| p.z - NEAR,
-        |p| GUARD * p.z - p.x,
-        |p| GUARD * p.z + p.x,
-        |p| GUARD * p.z - p.y,
-        |p| GUARD * p.z + p.y,
-    ];
-    let mut poly: Vec<ClipVertex> = corners.to_vec();
-    for plane in planes {
-        let mut next = Vec::with_capacity(poly.len() + 1);
-        for i in 0..poly.len() {
-            let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
-            let (dp, dq) = (plane(p.pos), plane(q.pos));
-            if dp >= 0.0 {
-                next.push(p);
-            }
-            if (dp >= 0.0) != (dq >= 0.0) {
-                next.push(p.lerp(q, dp / (dp - dq)));
-            }
-        }
-        poly = next;
-        if poly.len() < 3 {
-            return;
-        }
-    }
-    for i in 1..poly.len() - 1 {
-        emit(view, [poly[0], poly[i], poly[i + 1]], a, object, out);
-    }
-}
-
-/// Projects, snaps and orients a clipped triangle of the original triangle with vertex varyings
-/// `a`, and sets up its interpolant planes; drops it when it covers no pixel centre's box.
-fn emit(view: &View, v: [ClipVertex; 3], a: [Vec3; 3], object: u32, out: &mut Vec<ScreenTriangle>) {
-    let mut x = [0i32; 3];
-    let mut y = [0i32; 3];
-    // (varying·1/w, 1/w) at each vertex; the varying of a clipped vertex is the original
-    // triangle's, interpolated at its barycentrics.
-    let mut values = [DVec4::ZERO; 3];
-    for k in 0..3 {
-        let p = view.clip_to_pixel(v[k].pos);
-        x[k] = round(p.x * SUBPIXEL);
-        y[k] = round(p.y * SUBPIXEL);
-        let inv_w = 1.0 / v[k].pos.z as f64;
-        let b = v[k].bary.as_dvec2();
-        let [a0, a1, a2] = a.map(|a| a.as_dvec3());
-        let varying = a0 + (a1 - a0) * b.x + (a2 - a0) * b.y;
-        values[k] = (varying * inv_w).extend(inv_w);
-    }
-    let area = edge(x[0], y[0], x[1], y[1], x[2], y[2]);
-    if area == 0 {
-        return;
-    }
-    if area < 0 {
-        x.swap(1, 2);
-        y.swap(1, 2);
-        values.swap(1, 2);
-    }
-    // Pixel i's centre is at i·256 + 128 in fixed point.
-    let half = 1 << (SUBPIXEL_BITS - 1);
-    let first = |lo: i32| (lo - half + (1 << SUBPIXEL_BITS) - 1).div_euclid(1 << SUBPIXEL_BITS);
-    let last = |hi: i32| (hi - half).div_euclid(1 << SUBPIXEL_BITS);
-    let min_x = first(*x.iter().min().unwrap()).max(0);
-    let max_x = last(*x.iter().max().unwrap()).min(view.width as i32 - 1);
-    let min_y = first(*y.iter().min().unwrap()).max(0);
-    let max_y = last(*y.iter().max().unwrap()).min(view.height as i32 - 1);
-    if min_x > max_x || min_y > max_y {
-        return;
-    }
-    // Each interpolant is Σ values[k]·λk, where λk = (edge function opposite vertex k) / area
-    // is affine in the pixel centre: its plane follows from the edge functions' steps.
-    let (ref_x, ref_y) = (x[0] >> SUBPIXEL_BITS, y[0] >> SUBPIXEL_BITS);
-    let (ref_px, ref_py) = (
-        (ref_x << SUBPIXEL_BITS) + half,
-        (ref_y << SUBPIXEL_BITS) + half,
-    );
-    let inv_area = 1.0 / area.abs() as f64;
-    let (mut at_ref, mut per_x, mut per_y) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
-    for (k, &value) in values.iter().enumerate() {
-        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-        let at = edge(x[i], y[i], x[j], y[j], ref_px, ref_py) as f64 * inv_area;
-        let step_x = -((y[j] - y[i]) as f64) * SUBPIXEL as f64 * inv_area;
-        let step_y = (x[j] - x[i]) as f64 * SUBPIXEL as f64 * inv_area;
-        at_ref += value * at;
-        per_x += value * step_x;
-        per_y += value * step_y;
-    }
-    out.push(ScreenTriangle {
-        x,
-        y,
-        min_x,
-        max_x,
-        min_y,
-        max_y,
-        ref_x,
-        ref_y,
-        at_ref: at_ref.as_vec4(),
-        per_x: per_x.as_vec4(),
-        per_y: per_y.as_vec4(),
-        object,
-    });
-}
-
-/// `v` rounded to the nearest integer, halves away from zero: `f32::round`, which on baseline
-/// x86-64 is a call into libm, done with a truncating conversion (|v| < 2^31).
-#[inline(always)]
-fn round(v: f32) -> i32 {
-    let whole = v as i32;
-    // The fractional part of a float is exact.
-    let fraction = v - whole as f32;
-    whole
-        .saturating_add((fraction >= 0.5) as i32)
-        .saturating_sub((fraction <= -0.5) as i32)
-}
-
-/// Twice the signed area of (a, b, p): positive when p is on the interior side of a→b.
-#[inline]
-fn edge(ax: i32, ay: i32, bx: i32, by: i32, px: i32, py: i32) -> i64 {
-    (bx - ax) as i64 * (py - ay) as i64 - (by - ay) as i64 * (px - ax) as i64
-}
-
-/// Triangle ids per band of [`BAND_ROWS`] rows, in triangle order.
-fn bin(triangles: &ScreenTriangles, height: u32) -> Vec<Vec<u32>> {
-    let bands = height.div_ceil(BAND_ROWS) as usize;
-    let mut bins = vec![Vec::new(); bands];
-    for (id, t) in triangles.iter() {
-        for band in (t.min_y as u32 / BAND_ROWS)..=(t.max_y as u32 / BAND_ROWS) {
-            bins[band as usize].push(id);
-        }
-    }
-    bins
 }
 
 /// Scan-converts the band's triangles in order, calling `span(pixels, x, y, triangle id,
@@ -506,7 +190,7 @@ fn bin(triangles: &ScreenTriangles, height: u32) -> Vec<Vec<u32>> {
 /// image form the band.
 #[inline]
 fn scan_band(
-    triangles: &ScreenTriangles,
+    triangles: ScreenTriangles<'_>,
     bin: &[u32],
     width: u32,
     top: u32,
@@ -515,14 +199,13 @@ fn scan_band(
 ) {
     debug_assert!(width > 0);
     let bottom = (top + rows) as i32 - 1;
-    let half = 1 << (SUBPIXEL_BITS - 1);
     for &i in bin {
         let t = triangles.get(i);
         let y0 = t.min_y.max(top as i32);
         let y1 = t.max_y.min(bottom);
         let (px, py) = (
-            (t.min_x << SUBPIXEL_BITS) + half,
-            (y0 << SUBPIXEL_BITS) + half,
+            (t.min_x << SUBPIXEL_BITS) + HALF,
+            (y0 << SUBPIXEL_BITS) + HALF,
         );
         // Edge k is opposite vertex k: it runs from vertex k+1 to vertex k+2, and its edge
         // function is vertex k's unnormalised barycentric weight.
@@ -571,29 +254,6 @@ fn scan_band(
             for k in 0..3 {
                 row_start[k] += step_y[k];
             }
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::round;
-
-    #[test]
-    fn round_is_f32_round() {
-        let special = [
-            0.5,
-            -0.5,
-            1.5,
-            -2.5,
-            0.499_999_97,
-            -0.499_999_97,
-            8_388_607.5,
-            1.0e9,
-        ];
-        let steps = (-40_000..40_000).map(|k| k as f32 * 0.031_25 + 0.003);
-        for v in special.into_iter().chain(steps) {
-            assert_eq!(round(v), v.round() as i32, "{v}");
         }
     }
 }

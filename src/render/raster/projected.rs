@@ -1,0 +1,243 @@
+//! The vertex stage: every mesh vertex projected once per frame, eight at a time, to what
+//! triangle setup needs of it: its snapped pixel position, its depth w, and which planes of the
+//! view volume and of the guard band it lies outside.
+//!
+//! Each lane computes exactly what [`View::to_clip`], [`View::clip_to_pixel`] and the snapping
+//! compute for one vertex, in the same order, so a triangle set up from projected vertices gets
+//! the same bits as one set up from its clip-space corners.
+
+use glam::Vec3;
+use wide::{CmpGe, CmpGt, CmpLe, CmpLt, i32x8};
+
+use super::snap::{GUARD, SUBPIXEL};
+use crate::render::camera::{NEAR, View};
+use crate::render::simd::{F32x8, V3, WIDTH};
+
+/// Outside the near plane (w < [`NEAR`]).
+pub const BEHIND: u32 = 1;
+/// Outside the view volume's four side planes: x > w, x < −w, y > w, y < −w.
+pub const PAST_RIGHT: u32 = 1 << 1;
+pub const PAST_LEFT: u32 = 1 << 2;
+pub const PAST_TOP: u32 = 1 << 3;
+pub const PAST_BOTTOM: u32 = 1 << 4;
+/// The planes a triangle is trivially rejected by when all three vertices lie outside one.
+pub const OUTSIDE: u32 = BEHIND | PAST_RIGHT | PAST_LEFT | PAST_TOP | PAST_BOTTOM;
+/// Not strictly inside the near plane and the guard band (|x|, |y| ≤ GUARD·w): a triangle with
+/// such a vertex is clipped, and the vertex's snapped position is not used.
+pub const NEEDS_CLIP: u32 = 1 << 5;
+
+/// One vertex after the vertex stage.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ProjectedVertex {
+    /// Pixel coordinates in 1/256 pixel, rounded to nearest (halves away from zero). Only
+    /// meaningful without [`NEEDS_CLIP`].
+    pub x: i32,
+    pub y: i32,
+    /// Clip-space w: the depth along the view direction, world units.
+    pub w: f32,
+    /// Outcode bits: [`BEHIND`] … [`NEEDS_CLIP`].
+    pub code: u32,
+}
+
+/// The projected vertices of one mesh, field by field (so that lanes store whole vectors and
+/// setup gathers only what it tests).
+#[derive(Debug, Clone, Default)]
+pub struct ProjectedVertices {
+    pub x: Vec<i32>,
+    pub y: Vec<i32>,
+    pub w: Vec<f32>,
+    pub code: Vec<u32>,
+}
+
+impl ProjectedVertices {
+    /// Vertex `i`.
+    #[inline(always)]
+    pub fn get(&self, i: usize) -> ProjectedVertex {
+        ProjectedVertex {
+            x: self.x[i],
+            y: self.y[i],
+            w: self.w[i],
+            code: self.code[i],
+        }
+    }
+
+    /// Makes room for `len` vertices; the values are overwritten by [`project`].
+    pub fn resize(&mut self, len: usize) {
+        self.x.resize(len, 0);
+        self.y.resize(len, 0);
+        self.w.resize(len, 0.0);
+        self.code.resize(len, 0);
+    }
+
+    /// The vertices as disjoint runs of `len`, each with the index of its first vertex, for
+    /// projecting in parallel.
+    pub fn runs_mut(&mut self, len: usize) -> impl Iterator<Item = Run<'_>> {
+        self.x
+            .chunks_mut(len)
+            .zip(self.y.chunks_mut(len))
+            .zip(self.w.chunks_mut(len))
+            .zip(self.code.chunks_mut(len))
+            .enumerate()
+            .map(move |(k, (((x, y), w), code))| Run {
+                first: k * len,
+                x,
+                y,
+                w,
+                code,
+            })
+    }
+}
+
+/// A run of projected vertices to fill.
+pub struct Run<'a> {
+    /// Index of the run's first vertex.
+    pub first: usize,
+    x: &'a mut [i32],
+    y: &'a mut [i32],
+    w: &'a mut [f32],
+    code: &'a mut [u32],
+}
+
+impl Run<'_> {
+    /// Number of vertices in the run.
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+}
+
+/// Projects `positions` (world space) through `view` into `out`, as long.
+pub fn project(view: &View, positions: &[Vec3], out: Run<'_>) {
+    debug_assert_eq!(positions.len(), out.x.len());
+    let eye = V3::splat(view.eye);
+    let (right, up, forward) = (
+        V3::splat(view.right),
+        V3::splat(view.up),
+        V3::splat(view.forward),
+    );
+    let scale_x = F32x8::splat(view.tan_half_fov * view.aspect);
+    let scale_y = F32x8::splat(view.tan_half_fov);
+    let (one, half) = (F32x8::splat(1.0), F32x8::splat(0.5));
+    let width = F32x8::splat(view.width as f32);
+    let height = F32x8::splat(view.image_height as f32);
+    let row_offset = F32x8::splat(view.row_offset as f32);
+    let (near, guard, subpixel) = (
+        F32x8::splat(NEAR),
+        F32x8::splat(GUARD),
+        F32x8::splat(SUBPIXEL),
+    );
+    let Run {
+        x: out_x,
+        y: out_y,
+        w: out_w,
+        code: out_code,
+        ..
+    } = out;
+    for (k, chunk) in positions.chunks(WIDTH).enumerate() {
+        // View::to_clip.
+        let d = gather(chunk) - eye;
+        let cx = d.dot(right) / scale_x;
+        let cy = d.dot(up) / scale_y;
+        let w = d.dot(forward);
+        // View::clip_to_pixel, then snapping.
+        let inv_w = one / w;
+        let px = (cx * inv_w + one) * half * width;
+        let py = (one - cy * inv_w) * half * height - row_offset;
+        let (x, y) = (round(px * subpixel), round(py * subpixel));
+        let bit =
+            |mask: F32x8, bit: u32| bytemuck::cast::<_, i32x8>(mask) & i32x8::splat(bit as i32);
+        let inside = w.cmp_ge(near) & cx.abs().cmp_le(guard * w) & cy.abs().cmp_le(guard * w);
+        let code = bit(w.cmp_lt(near), BEHIND)
+            | bit(cx.cmp_gt(w), PAST_RIGHT)
+            | bit(cx.cmp_lt(-w), PAST_LEFT)
+            | bit(cy.cmp_gt(w), PAST_TOP)
+            | bit(cy.cmp_lt(-w), PAST_BOTTOM)
+            | (!bytemuck::cast::<_, i32x8>(inside) & i32x8::splat(NEEDS_CLIP as i32));
+        let range = k * WIDTH..k * WIDTH + chunk.len();
+        store(&mut out_x[range.clone()], x.to_array());
+        store(&mut out_y[range.clone()], y.to_array());
+        store(&mut out_w[range.clone()], w.to_array());
+        store(&mut out_code[range], bytemuck::cast(code.to_array()));
+    }
+}
+
+/// Stores the first `out.len()` lanes (at most eight) into `out`: eight as one fixed-size copy.
+#[inline(always)]
+fn store<T: Copy>(out: &mut [T], lanes: [T; WIDTH]) {
+    match <&mut [T; WIDTH]>::try_from(&mut *out) {
+        Ok(all) => *all = lanes,
+        Err(_) => out.copy_from_slice(&lanes[..out.len()]),
+    }
+}
+
+/// Up to eight vectors in lanes; lanes past the last repeat it.
+#[inline(always)]
+fn gather(vectors: &[Vec3]) -> V3<F32x8> {
+    let Ok(eight) = <&[Vec3; WIDTH]>::try_from(vectors) else {
+        return V3::gather(vectors);
+    };
+    // A fixed-size array: the loads are plain moves, with no index arithmetic.
+    let lane = |c: fn(&Vec3) -> f32| F32x8::from(eight.map(|v| c(&v)));
+    V3::new(lane(|v| v.x), lane(|v| v.y), lane(|v| v.z))
+}
+
+/// [`super::snap::round`] lane by lane, for |v| < 2^31 (other lanes give unspecified values).
+#[inline(always)]
+fn round(v: F32x8) -> i32x8 {
+    let whole = v.trunc_int();
+    // The fractional part of a float is exact.
+    let fraction = v - whole.round_float();
+    let up: i32x8 = bytemuck::cast(fraction.cmp_ge(F32x8::splat(0.5)));
+    let down: i32x8 = bytemuck::cast(fraction.cmp_le(F32x8::splat(-0.5)));
+    // A true mask is −1.
+    whole - up + down
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::{NEEDS_CLIP, ProjectedVertices, project};
+    use crate::render::camera::View;
+    use crate::render::raster::snap::{SUBPIXEL, round};
+    use crate::scene::Camera;
+
+    #[test]
+    fn lanes_project_as_the_scalar_view_does() {
+        let camera = Camera {
+            position: Vec3::new(0.3, 0.4, 3.0),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+            fov: 50.0,
+        };
+        let view = View::new(&camera, 161, 97).rows(13, 40);
+        let positions: Vec<Vec3> = (0..1000)
+            .map(|k| {
+                let t = k as f32 * 0.37;
+                Vec3::new(t.sin() * 2.5, (t * 1.3).cos() * 2.0, (t * 0.7).sin() * 3.5)
+            })
+            .collect();
+        let mut projected = ProjectedVertices::default();
+        projected.resize(positions.len());
+        let run = projected.runs_mut(positions.len()).next().expect("one run");
+        project(&view, &positions, run);
+        let mut inside = 0;
+        for (i, p) in positions.iter().enumerate() {
+            let v = projected.get(i);
+            let clip = view.to_clip(*p);
+            assert_eq!(v.w.to_bits(), clip.z.to_bits());
+            if v.code & NEEDS_CLIP == 0 {
+                inside += 1;
+                let pixel = view.clip_to_pixel(clip);
+                assert_eq!(
+                    (v.x, v.y),
+                    (round(pixel.x * SUBPIXEL), round(pixel.y * SUBPIXEL))
+                );
+            }
+        }
+        assert!(
+            inside > 500,
+            "most points are inside the guard band ({inside})"
+        );
+        assert!(inside < 1000, "some points are clipped");
+    }
+}

@@ -1,0 +1,340 @@
+//! Triangle setup: from projected vertices to screen triangles ready for scan conversion.
+//!
+//! Setup runs in two steps so that shading work goes only to triangles that can show. The first,
+//! [`setup_triangle`], needs positions alone: it rejects triangles outside the view or covering
+//! no pixel centre (at the editor's preview size, most triangles of a real mesh), clips the rest
+//! against the near plane and the guard band, snaps and orients them, and sets up the plane of
+//! 1/w. The second, [`ScreenTriangle::set_varying`], sets up the planes of the varying once its
+//! vertex values are known: a Gouraud shader lights only the vertices of triangles that remain.
+
+use glam::{DVec3, Vec2, Vec3, Vec4};
+
+use wide::{CmpEq, CmpGt, i32x8};
+
+use super::projected::{NEEDS_CLIP, OUTSIDE, ProjectedVertices};
+use super::snap::{GUARD, HALF, SUBPIXEL, SUBPIXEL_BITS, edge, first_centre, last_centre, round};
+use crate::render::camera::{NEAR, View};
+use crate::render::simd::WIDTH;
+
+/// Clipping against the near plane and the four guard-band planes turns a triangle into a polygon
+/// of at most 3 + 5 vertices: a fan of at most this many triangles.
+pub const MAX_FAN: usize = 6;
+
+/// A triangle ready for scan conversion: snapped, counter-clockwise in fixed point, with the
+/// screen-space plane of its interpolants.
+///
+/// The interpolants are (varying·1/w, 1/w): both are affine in screen space, so each is a plane
+/// `at_ref + per_x·(x − ref_x) + per_y·(y − ref_y)` over pixel centres, and dividing by the
+/// fourth gives the perspective-correct varying. The reference is the pixel holding vertex 0, so
+/// strips of an image evaluate the planes exactly as the whole image does.
+#[derive(Debug, Clone, Copy)]
+pub struct ScreenTriangle {
+    /// Vertex pixel coordinates in 1/256 pixel.
+    pub x: [i32; 3],
+    pub y: [i32; 3],
+    /// Inclusive pixel bounds, inside the image.
+    pub min_x: i32,
+    pub max_x: i32,
+    pub min_y: i32,
+    pub max_y: i32,
+    /// The reference pixel.
+    pub ref_x: i32,
+    pub ref_y: i32,
+    /// Interpolants at the reference pixel's centre, and their change per pixel right and down.
+    /// The varying's three (x, y, z) are zero until [`ScreenTriangle::set_varying`].
+    pub at_ref: Vec4,
+    pub per_x: Vec4,
+    pub per_y: Vec4,
+    pub object: u32,
+}
+
+/// Where a screen triangle's vertices lie on the mesh triangle it came from: what setting up
+/// the planes of its varying needs.
+#[derive(Debug, Clone, Copy)]
+pub struct Corners {
+    /// The mesh triangle, an index into its object's triangles.
+    pub triangle: u32,
+    /// 1/w at each screen vertex.
+    pub inv_w: [f64; 3],
+    /// Barycentrics of each screen vertex on the mesh triangle (weights of its vertices 1
+    /// and 2): a clipped vertex lies between the triangle's own.
+    pub bary: [Vec2; 3],
+}
+
+/// A clip-space vertex during clipping: position (x, y, w) and barycentrics on the original triangle.
+#[derive(Debug, Clone, Copy)]
+struct ClipVertex {
+    pos: Vec3,
+    bary: Vec2,
+}
+
+impl ClipVertex {
+    fn lerp(self, other: ClipVertex, t: f32) -> ClipVertex {
+        ClipVertex {
+            pos: self.pos.lerp(other.pos, t),
+            bary: self.bary.lerp(other.bary, t),
+        }
+    }
+}
+
+/// Barycentrics of a triangle's own three vertices.
+const OWN_BARY: [Vec2; 3] = [Vec2::ZERO, Vec2::X, Vec2::Y];
+
+/// Sets up mesh triangle `triangle` of `object`, whose vertices are `indices` into the object's
+/// `projected` vertices (and world `positions`, for clipping): pushes the screen triangles it
+/// yields (0, 1 or a fan of several) with their [`Corners`].
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn setup_triangle(
+    view: &View,
+    projected: &ProjectedVertices,
+    positions: &[Vec3],
+    indices: [u32; 3],
+    object: u32,
+    triangle: u32,
+    out: &mut Vec<ScreenTriangle>,
+    corners: &mut Vec<Corners>,
+) {
+    let [a, b, c] = indices.map(|i| projected.get(i as usize));
+    // Trivial reject: all three vertices outside one plane of the view volume.
+    if a.code & b.code & c.code & OUTSIDE != 0 {
+        return;
+    }
+    if (a.code | b.code | c.code) & NEEDS_CLIP == 0 {
+        emit(
+            view,
+            [a.x, b.x, c.x],
+            [a.y, b.y, c.y],
+            [a.w, b.w, c.w],
+            OWN_BARY,
+            object,
+            triangle,
+            out,
+            corners,
+        );
+        return;
+    }
+    let v = indices.map(|i| view.to_clip(positions[i as usize]));
+    let corner = |k: usize| ClipVertex {
+        pos: v[k],
+        bary: OWN_BARY[k],
+    };
+    // Sutherland–Hodgman in homogeneous space: near plane, then the guard band.
+    let planes: [fn(Vec3) -> f32; 5] = [
+        |p| p.z - NEAR,
+        |p| GUARD * p.z - p.x,
+        |p| GUARD * p.z + p.x,
+        |p| GUARD * p.z - p.y,
+        |p| GUARD * p.z + p.y,
+    ];
+    let mut poly: Vec<ClipVertex> = vec![corner(0), corner(1), corner(2)];
+    for plane in planes {
+        let mut next = Vec::with_capacity(poly.len() + 1);
+        for i in 0..poly.len() {
+            let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
+            let (dp, dq) = (plane(p.pos), plane(q.pos));
+            if dp >= 0.0 {
+                next.push(p);
+            }
+            if (dp >= 0.0) != (dq >= 0.0) {
+                next.push(p.lerp(q, dp / (dp - dq)));
+            }
+        }
+        poly = next;
+        if poly.len() < 3 {
+            return;
+        }
+    }
+    for i in 1..poly.len() - 1 {
+        let fan = [poly[0], poly[i], poly[i + 1]];
+        let snapped = fan.map(|v| {
+            let p = view.clip_to_pixel(v.pos);
+            (round(p.x * SUBPIXEL), round(p.y * SUBPIXEL))
+        });
+        emit(
+            view,
+            snapped.map(|s| s.0),
+            snapped.map(|s| s.1),
+            fan.map(|v| v.pos.z),
+            fan.map(|v| v.bary),
+            object,
+            triangle,
+            out,
+            corners,
+        );
+    }
+}
+
+/// Which of up to eight `triangles` (vertex indices into `projected`) may cover a pixel centre
+/// of `view`, as bits (lane k is bit k): the cheap tests of [`setup_triangle`] in lanes, so
+/// that the common case at small sizes, a triangle between pixel centres, costs no branch of
+/// its own. A triangle outside one plane of the view volume, or within the guard band but
+/// with no pixel centre inside its bounding box, is dropped; the rest are set up one by one.
+#[inline]
+pub fn may_cover(view: &View, projected: &ProjectedVertices, triangles: &[[u32; 3]]) -> u32 {
+    debug_assert!((1..=WIDTH).contains(&triangles.len()));
+    let last = triangles.len() - 1;
+    let mut x = [[0i32; WIDTH]; 3];
+    let mut y = [[0i32; WIDTH]; 3];
+    let mut code = [[0i32; WIDTH]; 3];
+    for lane in 0..WIDTH {
+        let t = triangles[lane.min(last)];
+        for k in 0..3 {
+            let i = t[k] as usize;
+            x[k][lane] = projected.x[i];
+            y[k][lane] = projected.y[i];
+            code[k][lane] = projected.code[i] as i32;
+        }
+    }
+    let [x0, x1, x2] = x.map(i32x8::from);
+    let [y0, y1, y2] = y.map(i32x8::from);
+    let [c0, c1, c2] = code.map(i32x8::from);
+    let zero = i32x8::splat(0);
+    let not_outside = (c0 & c1 & c2 & i32x8::splat(OUTSIDE as i32)).cmp_eq(zero);
+    let clipped = !((c0 | c1 | c2) & i32x8::splat(NEEDS_CLIP as i32)).cmp_eq(zero);
+    // first_centre and last_centre: floor division by 256 is an arithmetic shift.
+    let first = |lo: i32x8| (lo + i32x8::splat((1 << SUBPIXEL_BITS) - 1 - HALF)) >> SUBPIXEL_BITS;
+    let last_c = |hi: i32x8| (hi - i32x8::splat(HALF)) >> SUBPIXEL_BITS;
+    let min_x = first(x0.min(x1).min(x2)).max(zero);
+    let max_x = last_c(x0.max(x1).max(x2)).min(i32x8::splat(view.width as i32 - 1));
+    let min_y = first(y0.min(y1).min(y2)).max(zero);
+    let max_y = last_c(y0.max(y1).max(y2)).min(i32x8::splat(view.height as i32 - 1));
+    let empty = min_x.cmp_gt(max_x) | min_y.cmp_gt(max_y);
+    let keep = not_outside & (clipped | !empty);
+    (keep.move_mask() as u32) & ((1 << triangles.len()) - 1)
+}
+
+/// Orients a snapped triangle (fixed-point `x`, `y`, clip w, barycentrics on its mesh
+/// triangle) and sets up its plane of 1/w; drops it when it covers no pixel centre's box or
+/// has no area.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn emit(
+    view: &View,
+    mut x: [i32; 3],
+    mut y: [i32; 3],
+    w: [f32; 3],
+    mut bary: [Vec2; 3],
+    object: u32,
+    triangle: u32,
+    out: &mut Vec<ScreenTriangle>,
+    corners: &mut Vec<Corners>,
+) {
+    let min_x = first_centre(x[0].min(x[1]).min(x[2])).max(0);
+    let max_x = last_centre(x[0].max(x[1]).max(x[2])).min(view.width as i32 - 1);
+    let min_y = first_centre(y[0].min(y[1]).min(y[2])).max(0);
+    let max_y = last_centre(y[0].max(y[1]).max(y[2])).min(view.height as i32 - 1);
+    if min_x > max_x || min_y > max_y {
+        return;
+    }
+    let area = edge(x[0], y[0], x[1], y[1], x[2], y[2]);
+    if area == 0 {
+        return;
+    }
+    let mut inv_w = w.map(|w| 1.0 / w as f64);
+    if area < 0 {
+        x.swap(1, 2);
+        y.swap(1, 2);
+        inv_w.swap(1, 2);
+        bary.swap(1, 2);
+    }
+    let (ref_x, ref_y) = (x[0] >> SUBPIXEL_BITS, y[0] >> SUBPIXEL_BITS);
+    let weights = Weights::new(x, y, ref_x, ref_y, area);
+    let (at, per_x, per_y) = weights.plane(inv_w);
+    out.push(ScreenTriangle {
+        x,
+        y,
+        min_x,
+        max_x,
+        min_y,
+        max_y,
+        ref_x,
+        ref_y,
+        at_ref: Vec4::new(0.0, 0.0, 0.0, at as f32),
+        per_x: Vec4::new(0.0, 0.0, 0.0, per_x as f32),
+        per_y: Vec4::new(0.0, 0.0, 0.0, per_y as f32),
+        object,
+    });
+    corners.push(Corners {
+        triangle,
+        inv_w,
+        bary,
+    });
+}
+
+/// Each barycentric weight λk = (edge function opposite vertex k) / area is affine in the pixel
+/// centre: its value at the reference pixel's centre, and its steps per pixel right and down.
+struct Weights {
+    at: [f64; 3],
+    step_x: [f64; 3],
+    step_y: [f64; 3],
+}
+
+impl Weights {
+    /// The weights of the counter-clockwise triangle (`x`, `y`) of twice-signed `area` (either
+    /// orientation's), at reference pixel (`ref_x`, `ref_y`).
+    #[inline(always)]
+    fn new(x: [i32; 3], y: [i32; 3], ref_x: i32, ref_y: i32, area: i64) -> Weights {
+        let (ref_px, ref_py) = (
+            (ref_x << SUBPIXEL_BITS) + HALF,
+            (ref_y << SUBPIXEL_BITS) + HALF,
+        );
+        let inv_area = 1.0 / area.abs() as f64;
+        let mut weights = Weights {
+            at: [0.0; 3],
+            step_x: [0.0; 3],
+            step_y: [0.0; 3],
+        };
+        for k in 0..3 {
+            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+            weights.at[k] = edge(x[i], y[i], x[j], y[j], ref_px, ref_py) as f64 * inv_area;
+            weights.step_x[k] = -((y[j] - y[i]) as f64) * SUBPIXEL as f64 * inv_area;
+            weights.step_y[k] = (x[j] - x[i]) as f64 * SUBPIXEL as f64 * inv_area;
+        }
+        weights
+    }
+
+    /// The plane Σ values[k]·λk: its value at the reference and steps right and down, summed
+    /// in vertex order.
+    #[inline(always)]
+    fn plane(&self, values: [f64; 3]) -> (f64, f64, f64) {
+        let (mut at, mut per_x, mut per_y) = (0.0, 0.0, 0.0);
+        for (k, value) in values.into_iter().enumerate() {
+            at += value * self.at[k];
+            per_x += value * self.step_x[k];
+            per_y += value * self.step_y[k];
+        }
+        (at, per_x, per_y)
+    }
+}
+
+impl ScreenTriangle {
+    /// (varying·1/w, 1/w) at the centre of pixel (x, y).
+    #[inline(always)]
+    pub fn interpolants(&self, x: i32, y: i32) -> Vec4 {
+        self.at_ref + self.per_x * (x - self.ref_x) as f32 + self.per_y * (y - self.ref_y) as f32
+    }
+
+    /// Sets up the planes of varying·1/w, given the varying at the mesh triangle's three
+    /// vertices, `values`, and where this triangle's vertices lie on it, `corners`. The varying
+    /// of a clipped vertex is interpolated from the mesh triangle's.
+    #[inline]
+    pub fn set_varying(&mut self, corners: &Corners, values: [Vec3; 3]) {
+        let [a0, a1, a2] = values.map(|a| a.as_dvec3());
+        let scaled: [DVec3; 3] = std::array::from_fn(|k| {
+            let b = corners.bary[k].as_dvec2();
+            let varying = a0 + (a1 - a0) * b.x + (a2 - a0) * b.y;
+            varying * corners.inv_w[k]
+        });
+        let area = edge(
+            self.x[0], self.y[0], self.x[1], self.y[1], self.x[2], self.y[2],
+        );
+        let weights = Weights::new(self.x, self.y, self.ref_x, self.ref_y, area);
+        for c in 0..3 {
+            let (at, per_x, per_y) = weights.plane(scaled.map(|v| v[c]));
+            self.at_ref[c] = at as f32;
+            self.per_x[c] = per_x as f32;
+            self.per_y[c] = per_y as f32;
+        }
+    }
+}

@@ -1,0 +1,58 @@
+//! What a Z-buffer shader interpolates across a triangle: one value per mesh vertex (a normal,
+//! or a lit colour), asked for only at the triangles that survive setup.
+
+use glam::Vec3;
+
+use crate::world::World;
+
+/// The varying of every vertex of a world's meshes.
+pub trait Varying: Sync {
+    /// Called once per frame before any [`Varying::corners`], with the number of triangles per
+    /// object whose corners will be asked for: a varying that is costly per vertex can work out
+    /// whole objects at once where most of their vertices are needed.
+    fn prepare(&mut self, _triangles_needed: &[usize]) {}
+
+    /// Appends to `out` the values at the three vertices of each of `triangles` (indices into
+    /// the object's triangles) of object `object`.
+    fn corners(&self, object: usize, triangles: &[u32], out: &mut Vec<[Vec3; 3]>);
+}
+
+/// One slice of values per object, indexed by vertex: normals, or colours worked out already.
+pub struct PerVertex<'a> {
+    /// `values[object][vertex]`.
+    values: Vec<&'a [Vec3]>,
+    /// `triangles[object]`: each triangle's vertex indices.
+    triangles: Vec<&'a [[u32; 3]]>,
+}
+
+impl<'a> PerVertex<'a> {
+    /// The values `values[object][vertex]` on the meshes of `world`.
+    pub fn new(world: &'a World, values: Vec<&'a [Vec3]>) -> PerVertex<'a> {
+        debug_assert_eq!(values.len(), world.objects.len());
+        PerVertex {
+            values,
+            triangles: world
+                .objects
+                .iter()
+                .map(|o| &o.mesh.triangles[..])
+                .collect(),
+        }
+    }
+
+    /// The vertex normals of `world`'s meshes.
+    pub fn normals(world: &'a World) -> PerVertex<'a> {
+        let normals = world.objects.iter().map(|o| &o.mesh.normals[..]).collect();
+        PerVertex::new(world, normals)
+    }
+}
+
+impl Varying for PerVertex<'_> {
+    fn corners(&self, object: usize, triangles: &[u32], out: &mut Vec<[Vec3; 3]>) {
+        let (values, indices) = (self.values[object], self.triangles[object]);
+        out.extend(
+            triangles
+                .iter()
+                .map(|&t| indices[t as usize].map(|i| values[i as usize])),
+        );
+    }
+}
