@@ -145,6 +145,14 @@ impl Pacer {
             .is_some_and(|at| now.duration_since(at) < SETTLE)
     }
 
+    /// When input counts as paused (the end of [`SETTLE`] after the last key), while that is
+    /// still to come.
+    pub fn settles_at(&self) -> Option<Instant> {
+        self.last_input
+            .map(|at| at + SETTLE)
+            .filter(|&at| at > Instant::now())
+    }
+
     /// Whether the screen shows a cheap frame that the exact one must replace once input settles.
     pub fn needs_exact(&self, now: Instant) -> bool {
         self.lossy_shown && !self.moving(now)

@@ -10,6 +10,11 @@ pub const TERMINAL_DEFAULT: Color = Color::Reset;
 
 /// Text with no style of its own.
 pub const PLAIN: Style = Style::new();
+/// Cells under a picture in real pixels: the terminal's own colours, no attribute.
+pub const PICTURE_UNDER: Style = Style::new()
+    .fg(TERMINAL_DEFAULT)
+    .bg(TERMINAL_DEFAULT)
+    .remove_modifier(Modifier::all());
 /// Hints, separators, placeholders, an unfocused pane's border, the help's context column.
 pub const DIM: Style = Style::new().fg(Color::DarkGray);
 /// Property labels and inactive dialog fields.
