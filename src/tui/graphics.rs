@@ -11,10 +11,10 @@
 use super::term_input::Reply;
 use crate::terminal_image::{CellArea, CellSize, Protocol};
 
-/// Most pixels one preview image has: 640×400. A sixel frame of the default scene at that size
-/// is about 150 kB and a kitty frame about 120 kB (see the README); a larger pane is rendered
-/// smaller with its aspect kept, and kitty and iTerm2 scale it up to fill the pane.
-pub const PIXEL_BUDGET: u64 = 256_000;
+/// Most pixels one preview image has: 800×600, which keeps one frame of the default scene near
+/// 120 kB in every protocol (see the README); a larger pane is rendered smaller with its aspect
+/// kept, and kitty and iTerm2 scale it up to fill the pane.
+pub const PIXEL_BUDGET: u64 = 480_000;
 
 /// What `--graphics` asks for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -127,6 +127,21 @@ impl ImageLayer {
             cols: u32::from(p.area.width.max(1)),
             rows: u32::from(p.area.height.max(1)),
         };
+        // Kitty and iTerm2 stretch the picture over the cells; sixel draws it at its own size,
+        // centred in them when the pixel budget made it smaller.
+        let (at_x, at_y) = match protocol {
+            Protocol::Sixel => {
+                let cell = self.graphics.cell;
+                let spare = |cells: u16, size: u32, pixels: u32| {
+                    ((u32::from(cells) * size).saturating_sub(pixels) / 2 / size.max(1)) as u16
+                };
+                (
+                    p.area.x + spare(p.area.width, cell.width, p.image.width),
+                    p.area.y + spare(p.area.height, cell.height, p.image.height),
+                )
+            }
+            _ => (p.area.x, p.area.y),
+        };
         let pieces = match protocol {
             Protocol::Kitty => kitty::encode_pieces(p.image, cells, Some(id))?,
             other => vec![other.encode(p.image, cells)?],
@@ -134,15 +149,13 @@ impl ImageLayer {
         let mut out = Vec::new();
         match self.graphics.tmux_pane {
             None => {
-                out.extend_from_slice(
-                    format!("\x1b[{};{}H", p.area.y + 1, p.area.x + 1).as_bytes(),
-                );
+                out.extend_from_slice(format!("\x1b[{};{}H", at_y + 1, at_x + 1).as_bytes());
                 pieces.iter().for_each(|piece| out.extend_from_slice(piece));
             }
             // Passthrough reaches the outer terminal, whose cursor tmux does not move: the
             // cursor is moved there, in the outer terminal's cells, and put back afterwards.
             Some((left, top)) => {
-                let at = format!("\x1b7\x1b[{};{}H", top + p.area.y + 1, left + p.area.x + 1);
+                let at = format!("\x1b7\x1b[{};{}H", top + at_y + 1, left + at_x + 1);
                 out.extend_from_slice(&passthrough::tmux(at.as_bytes()));
                 for piece in &pieces {
                     out.extend_from_slice(&passthrough::tmux(piece));
@@ -236,6 +249,28 @@ mod tests {
         );
         assert!(text.contains("\x1bPtmux;\x1b\x1b_Ga=T"), "{text:?}");
         assert!(text.ends_with("\x1bPtmux;\x1b\x1b8\x1b\\"), "{text:?}");
+    }
+
+    #[test]
+    fn a_sixel_smaller_than_its_cells_is_centred_in_them() {
+        let mut layer = ImageLayer::new(Graphics {
+            protocol: Some(Protocol::Sixel),
+            ..kitty_layer().graphics
+        });
+        // 10×5 cells of 10×20 pixels are 100×100 pixels; the picture is 50×60.
+        let small = PreviewImage {
+            width: 50,
+            height: 60,
+            pixels: vec![[9; 3]; 3000],
+        };
+        let bytes = layer.frame(&[Placement {
+            slot: 0,
+            area: Rect::new(4, 3, 10, 5),
+            image: &small,
+        }]);
+        // 25 pixels spare on the left are 2 whole cells; 20 above are 1.
+        assert!(bytes.starts_with(b"\x1b[5;7H\x1bP"), "{:?}", &bytes[..12]);
+        assert_eq!(layer.cleanup(), b"\x1b[2J");
     }
 
     #[test]

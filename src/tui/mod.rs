@@ -117,6 +117,9 @@ pub fn run(scene_path: Option<PathBuf>, startup: color_probe::Startup) -> Result
             Ok(size) => size,
             Err(e) => break Err(TuiError::Terminal(e)),
         };
+        if app.quit {
+            break Ok(Exit::Quit);
+        }
         let areas = view::layout(Rect::new(0, 0, size.width, size.height), &app);
         let now = Instant::now();
         // Real pixels once keys pause; frames rendered while they arrive are half blocks.
@@ -141,9 +144,6 @@ pub fn run(scene_path: Option<PathBuf>, startup: color_probe::Startup) -> Result
             }
             state.drawn(started);
             redraw = false;
-        }
-        if app.quit {
-            break Ok(Exit::Quit);
         }
         // Frames rendered in half blocks while keys arrived are rendered again in pixels once
         // the keys pause.
@@ -214,6 +214,19 @@ pub fn run(scene_path: Option<PathBuf>, startup: color_probe::Startup) -> Result
             break Ok(Exit::Signal(signal));
         }
     };
+    // An answer to a query still on its way would reach the shell as typed text: wait a little
+    // for it while the editor still reads its input.
+    let until = Instant::now() + pacer::LAST_ANSWER;
+    while pacer.awaiting() {
+        let left = until.saturating_duration_since(Instant::now());
+        match rx.recv_timeout(left) {
+            Ok(Event::Reply(term_input::Reply::CursorPosition { .. })) => {
+                pacer.answered(Instant::now())
+            }
+            Ok(_) => {}
+            Err(_) => break,
+        }
+    }
     // Edits reach the disk before the terminal is touched: it may be gone.
     let recovered = match ended {
         Ok(Exit::Quit) => autosave.quit().map(|()| None),

@@ -19,6 +19,10 @@ pub const QUERY: &[u8] = b"\x1b[6n";
 /// Input pause after which the exact frame replaces the cheap ones drawn while keys arrive.
 pub const SETTLE: Duration = Duration::from_millis(150);
 
+/// How long the editor waits, when it quits, for answers still on their way (which would
+/// otherwise reach the shell as typed text).
+pub const LAST_ANSWER: Duration = Duration::from_millis(300);
+
 /// How long the first answer is awaited before the terminal is taken to answer nothing.
 const FIRST_ANSWER: Duration = Duration::from_millis(1500);
 
@@ -103,6 +107,11 @@ impl Pacer {
         self.in_flight = 0;
         self.asked_at = None;
         true
+    }
+
+    /// Whether a query is on its way to a terminal that answers.
+    pub fn awaiting(&self) -> bool {
+        self.in_flight > 0 && self.answering != Answering::No
     }
 
     /// Whether a query should follow the frame just written.
