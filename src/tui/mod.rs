@@ -138,6 +138,7 @@ pub fn run(scene_path: Option<PathBuf>, startup: color_probe::Startup) -> Result
                 if let Err(e) = guard.ask(pacer::QUERY) {
                     break Err(TuiError::Terminal(e));
                 }
+                pacer.carrying(picture_bytes.len());
                 pacer.asked(now, cheap);
             } else {
                 pacer.drew(cheap);

@@ -26,6 +26,11 @@ pub const LAST_ANSWER: Duration = Duration::from_millis(300);
 /// How long the first answer is awaited before the terminal is taken to answer nothing.
 const FIRST_ANSWER: Duration = Duration::from_millis(1500);
 
+/// The slowest link the editor expects, bytes per second: a large frame (a picture in real
+/// pixels) adds its bytes at this rate to the time its answer is awaited, so that a picture
+/// crossing a slow link is not taken for a terminal that does not answer.
+const SLOWEST_LINK: f64 = 16_000.0;
+
 /// How long a later answer is awaited before drawing anyway (an answer lost to a reset, or a
 /// link stalled for longer than this): the editor never freezes for good.
 const LATER_ANSWER: Duration = Duration::from_secs(4);
@@ -53,6 +58,8 @@ pub struct Pacer {
     last_input: Option<Instant>,
     /// Whether the frame on screen (or in flight) is a cheap one that the exact frame must replace.
     lossy_shown: bool,
+    /// Extra time the answers in flight are awaited, for the large frames before them.
+    patience: Duration,
 }
 
 impl Default for Pacer {
@@ -70,6 +77,7 @@ impl Pacer {
             asked_at: None,
             last_input: None,
             lossy_shown: false,
+            patience: Duration::ZERO,
         }
     }
 
@@ -97,7 +105,7 @@ impl Pacer {
             Answering::Unknown => FIRST_ANSWER,
             Answering::Yes => LATER_ANSWER,
         };
-        if now.duration_since(asked) < limit {
+        if now.duration_since(asked) < limit + self.patience {
             return false;
         }
         if self.answering == Answering::Unknown {
@@ -106,6 +114,7 @@ impl Pacer {
         // Give up on what is in flight; late answers are then ignored.
         self.in_flight = 0;
         self.asked_at = None;
+        self.patience = Duration::ZERO;
         true
     }
 
@@ -127,6 +136,12 @@ impl Pacer {
         self.lossy_shown = lossy;
     }
 
+    /// Notes that the frame about to be asked after carries `bytes` more than its cells (a
+    /// picture): its answer is awaited longer, as if the link were as slow as [`SLOWEST_LINK`].
+    pub fn carrying(&mut self, bytes: usize) {
+        self.patience += Duration::from_secs_f64(bytes as f64 / SLOWEST_LINK);
+    }
+
     /// Notes a frame written without a query (the terminal does not answer).
     pub fn drew(&mut self, lossy: bool) {
         self.lossy_shown = lossy;
@@ -141,6 +156,9 @@ impl Pacer {
         self.answering = Answering::Yes;
         self.in_flight -= 1;
         self.asked_at = (self.in_flight > 0).then_some(now);
+        if self.in_flight == 0 {
+            self.patience = Duration::ZERO;
+        }
     }
 
     /// Notes a key or mouse event at `now`.
@@ -175,10 +193,11 @@ impl Pacer {
             .then_some(self.last_input.map(|at| at + SETTLE))
             .flatten();
         let timeout = self.asked_at.map(|at| {
-            at + match self.answering {
-                Answering::Yes => LATER_ANSWER,
-                _ => FIRST_ANSWER,
-            }
+            at + self.patience
+                + match self.answering {
+                    Answering::Yes => LATER_ANSWER,
+                    _ => FIRST_ANSWER,
+                }
         });
         match (settle, timeout) {
             (Some(a), Some(b)) => Some(a.min(b)),
@@ -251,5 +270,21 @@ mod tests {
         assert!(p.needs_exact(t + SETTLE));
         p.asked(t + SETTLE, false);
         assert!(!p.needs_exact(t + SETTLE + ms(1)));
+    }
+
+    #[test]
+    fn a_large_picture_is_awaited_longer() {
+        let t = Instant::now();
+        let mut p = Pacer::new();
+        // 160 kB at the slowest link's 16 kB/s: 10 s more.
+        p.carrying(160_000);
+        p.asked(t, false);
+        assert!(!p.may_draw(t + FIRST_ANSWER + ms(9_000)));
+        assert_eq!(p.answering(), Answering::Unknown);
+        p.answered(t + FIRST_ANSWER + ms(9_500));
+        assert_eq!(p.answering(), Answering::Yes);
+        // The next frame, with no picture, gets the usual patience.
+        p.asked(t + ms(12_000), false);
+        assert!(p.may_draw(t + ms(12_000) + LATER_ANSWER));
     }
 }
