@@ -137,7 +137,7 @@ impl Pacer {
     }
 
     /// Notes that the frame about to be asked after carries `bytes` more than its cells (a
-    /// picture): its answer is awaited longer, as if the link were as slow as [`SLOWEST_LINK`].
+    /// picture): its answer is awaited longer, as if the link carried 16 kB/s.
     pub fn carrying(&mut self, bytes: usize) {
         self.patience += Duration::from_secs_f64(bytes as f64 / SLOWEST_LINK);
     }
