@@ -8,8 +8,10 @@ use glam::Vec3;
 use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::scene::default_scene;
+use rastray::terminal_image::{CellSize, Protocol};
 use rastray::tui::action::Action;
 use rastray::tui::app::App;
+use rastray::tui::graphics::Graphics;
 use rastray::tui::input::map_too_small;
 use rastray::tui::keys::KEYS;
 use rastray::tui::preview::{ColorMode, PreviewImage, halves_match, nearest_256};
@@ -540,4 +542,61 @@ fn keys_on_the_too_small_screen_change_nothing_but_quit_and_help_act() {
     // Inside the help, its own keys work (it can be seen).
     apply(&mut app, Action::Help);
     assert!(map_too_small(&app, &key_event(KeyCode::Esc)).is_some());
+}
+
+/// The app drawing its preview in sixel on 10×20-pixel cells, with a frame of the size rendered
+/// for real pixels at `width`×`height`.
+fn sixel_app(width: u16, height: u16) -> App {
+    let graphics = Graphics {
+        protocol: Some(Protocol::Sixel),
+        cell: CellSize {
+            width: 10,
+            height: 20,
+        },
+        tmux_pane: None,
+        why: None,
+    };
+    let mut app = app().with_graphics(graphics.clone());
+    let p = layout(Rect::new(0, 0, width, height), &app)
+        .unwrap()
+        .picture;
+    let (w, h) = graphics.pixel_size(p.width, p.height).unwrap();
+    apply(
+        &mut app,
+        Action::Rendered(Box::new(RenderReply::Shot {
+            id: 1,
+            slot: Slot::Main,
+            image: stripes(w, h),
+            millis: 1.0,
+            triangles: 112,
+            last: true,
+        })),
+    );
+    app
+}
+
+#[test]
+fn a_picture_in_pixels_lies_over_blank_cells_that_a_dialog_rewrites() {
+    let mut app = sixel_app(100, 30);
+    let picture = layout(Rect::new(0, 0, 100, 30), &app).unwrap().picture;
+    let placed = rastray::tui::view::placements(&app, picture);
+    assert_eq!(placed.len(), 1);
+    assert_eq!(placed[0].area, picture);
+    let under = buffer(&app, 100, 30);
+    assert!(picture.positions().all(|p| under[p].symbol() == " "));
+    assert!(row(&under, 28).contains("│ sixel │"), "{}", row(&under, 28));
+    // The help opens over the preview: no picture, and every cell that lay under it is written
+    // again (a sixel picture is wiped only where cells are written).
+    apply(&mut app, Action::Help);
+    assert!(rastray::tui::view::placements(&app, picture).is_empty());
+    let over = buffer(&app, 100, 30);
+    let changed: std::collections::HashSet<(u16, u16)> = under
+        .diff(&over)
+        .into_iter()
+        .map(|(x, y, _)| (x, y))
+        .collect();
+    assert!(
+        picture.positions().all(|p| changed.contains(&(p.x, p.y))),
+        "cells under the picture are left as they were"
+    );
 }
