@@ -45,6 +45,9 @@ pub fn query(kitty_through_tmux: bool) -> Vec<u8> {
 /// How long to wait for the sentinel before deciding on what has arrived.
 pub const TIMEOUT: Duration = Duration::from_millis(300);
 
+/// How long to wait for the sentinel when the environment hints at a terminal with pixels.
+pub const HINTED_TIMEOUT: Duration = Duration::from_millis(1500);
+
 /// The colour depth the environment states: truecolor for `COLORTERM=truecolor|24bit`,
 /// `None` when it is silent.
 pub fn from_env(colorterm: Option<&str>) -> Option<ColorMode> {
@@ -115,7 +118,14 @@ pub fn detect(color: Option<ColorMode>, request: GraphicsRequest) -> Startup {
     };
     let questions = color.is_none() || request != GraphicsRequest::HalfBlock;
     if questions && io::stdin().is_terminal() && io::stdout().is_terminal() {
-        facts.replies = ask_raw(&query(tmux_passthrough == Some(true)));
+        // A terminal that says it has pixels is given longer to answer: one just opened may
+        // still be starting up (kitty takes about a second on a loaded machine).
+        let timeout = if facts.hints_pixels() || tmux_passthrough == Some(true) {
+            HINTED_TIMEOUT
+        } else {
+            TIMEOUT
+        };
+        facts.replies = ask_raw(&query(tmux_passthrough == Some(true)), timeout);
     }
     Startup {
         color: color.unwrap_or_else(|| decide(&facts.replies)),
@@ -149,13 +159,14 @@ fn tmux_pane() -> (u16, u16) {
     (numbers.next().unwrap_or(0), numbers.next().unwrap_or(0))
 }
 
-/// Writes `query` with raw mode on and collects the replies (see [`ask`]).
-fn ask_raw(query: &[u8]) -> Vec<Reply> {
+/// Writes `query` with raw mode on and collects the replies for at most `timeout` (see
+/// [`ask`]).
+fn ask_raw(query: &[u8], timeout: Duration) -> Vec<Reply> {
     let was_raw = is_raw_mode_enabled().unwrap_or(false);
     if !was_raw && enable_raw_mode().is_err() {
         return Vec::new();
     }
-    let replies = ask(query, TIMEOUT).unwrap_or_default();
+    let replies = ask(query, timeout).unwrap_or_default();
     if !was_raw {
         let _ = disable_raw_mode();
     }

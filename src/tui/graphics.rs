@@ -145,7 +145,7 @@ impl Facts {
     }
 
     /// Whether the environment hints at a terminal with pixels.
-    fn hints_pixels(&self) -> bool {
+    pub fn hints_pixels(&self) -> bool {
         self.kitty_window
             || matches!(self.term.as_str(), "xterm-kitty" | "xterm-ghostty")
             || self.term.starts_with("foot")
