@@ -31,6 +31,7 @@ pub mod atomic_file;
 pub mod bench;
 pub mod export;
 pub mod mesh;
+pub mod model_scene;
 pub mod render;
 pub mod scene;
 pub mod terminal_image;

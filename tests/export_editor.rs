@@ -1,5 +1,5 @@
-//! The editor's export dialog writing a turntable: the frame count field, and the format the
-//! file name asks for.
+//! The editor's export dialog: a turntable of the typed frame count, a 16-bit PNG with alpha
+//! chosen in its fields, and the format the file name asks for.
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -9,6 +9,7 @@ use rastray::scene::default_scene;
 use rastray::tui::action::Action;
 use rastray::tui::app::App;
 use rastray::tui::export_job::export_output;
+use rastray::tui::mode::Mode;
 use rastray::tui::update::apply;
 
 /// A bound on waiting for the export thread, so a broken one fails the test instead of hanging.
@@ -21,6 +22,67 @@ fn type_text(app: &mut App, text: &str) {
     }
 }
 
+fn down(app: &mut App, fields: usize) {
+    for _ in 0..fields {
+        apply(app, Action::Down);
+    }
+}
+
+/// Starts the export and ticks the editor until the file exists.
+fn submit_and_wait(app: &mut App, path: &Path) {
+    apply(app, Action::Submit);
+    assert!(
+        matches!(app.mode(), Mode::Normal),
+        "the dialog closes on a valid export: {:?}",
+        app.mode()
+    );
+    let started = Instant::now();
+    while !path.exists() {
+        assert!(started.elapsed() < PATIENCE, "the export finishes");
+        std::thread::sleep(Duration::from_millis(5));
+        apply(app, Action::Tick);
+    }
+}
+
+#[test]
+fn the_dialog_writes_a_16_bit_png_with_coverage_as_alpha() {
+    let dir = tempfile::tempdir().unwrap();
+    let typed = dir.path().join("still.exr");
+    let mut app = App::new(default_scene(), None, PathBuf::from("."));
+    apply(&mut app, Action::Export);
+    type_text(&mut app, typed.to_str().unwrap());
+    down(&mut app, 1);
+    type_text(&mut app, "32x18");
+    // Past the algorithm and the samples to the format: by extension → png8 → png16; a named
+    // format renames the file to match.
+    down(&mut app, 3);
+    apply(&mut app, Action::Step(1));
+    apply(&mut app, Action::Step(1));
+    let path = dir.path().join("still.png");
+    match app.mode() {
+        Mode::Export(form) => {
+            assert_eq!(form.format, Some(ImageFormat::PNG16));
+            assert_eq!(Path::new(&form.path), path);
+        }
+        other => panic!("the export dialog stays open: {other:?}"),
+    }
+    // The background.
+    down(&mut app, 1);
+    apply(&mut app, Action::Step(1));
+    submit_and_wait(&mut app, &path);
+    let image = image::open(&path).expect("a PNG that decodes");
+    assert_eq!(image.color(), image::ColorType::Rgba16);
+    assert_eq!((image.width(), image.height()), (32, 18));
+    let pixels = image.to_rgba16();
+    // The default scene leaves its top-left corner empty and covers its centre.
+    assert_eq!(
+        pixels.get_pixel(0, 0)[3],
+        0,
+        "the background is transparent"
+    );
+    assert_eq!(pixels.get_pixel(16, 9)[3], u16::MAX, "an object is opaque");
+}
+
 #[test]
 fn the_dialog_writes_a_turntable_of_the_typed_frame_count() {
     let dir = tempfile::tempdir().unwrap();
@@ -28,20 +90,12 @@ fn the_dialog_writes_a_turntable_of_the_typed_frame_count() {
     let mut app = App::new(default_scene(), None, PathBuf::from("."));
     apply(&mut app, Action::Export);
     type_text(&mut app, path.to_str().unwrap());
-    apply(&mut app, Action::Down);
+    down(&mut app, 1);
     type_text(&mut app, "40x24");
-    // Past the algorithm and the samples to the turntable field.
-    for _ in 0..3 {
-        apply(&mut app, Action::Down);
-    }
+    // Past the algorithm, the samples, the format and the background to the turntable field.
+    down(&mut app, 5);
     type_text(&mut app, "3");
-    apply(&mut app, Action::Submit);
-    let started = Instant::now();
-    while !path.exists() {
-        assert!(started.elapsed() < PATIENCE, "the export finishes");
-        std::thread::sleep(Duration::from_millis(5));
-        apply(&mut app, Action::Tick);
-    }
+    submit_and_wait(&mut app, &path);
     let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());
     let decoder = image::codecs::gif::GifDecoder::new(file).expect("a GIF");
     let frames = image::AnimationDecoder::into_frames(decoder)
@@ -53,7 +107,7 @@ fn the_dialog_writes_a_turntable_of_the_typed_frame_count() {
 
 #[test]
 fn the_file_name_and_frame_count_choose_what_is_written() {
-    let at = |name: &str, frames: &str| export_output(Path::new(name), frames);
+    let at = |name: &str, frames: &str| export_output(Path::new(name), None, frames);
     assert_eq!(at("a.png", "0"), Ok(Output::Image(ImageFormat::PNG8)));
     assert_eq!(at("a.exr", " 0 "), Ok(Output::Image(ImageFormat::Exr)));
     assert_eq!(
@@ -81,4 +135,11 @@ fn the_file_name_and_frame_count_choose_what_is_written() {
         let error = at(name, frames).expect_err(name);
         assert!(error.contains(says), "{name} {frames}: {error}");
     }
+    let png16 = Some(ImageFormat::PNG16);
+    assert_eq!(
+        export_output(Path::new("a.png"), png16, "0"),
+        Ok(Output::Image(ImageFormat::PNG16))
+    );
+    let error = export_output(Path::new("a.exr"), png16, "0").expect_err("png16 as .exr");
+    assert!(error.contains("format png16 writes .png files"), "{error}");
 }

@@ -26,7 +26,8 @@ use rastray::{Scene, World};
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
-    /// Scene file to open (the built-in default scene when absent).
+    /// Scene file to open, or a model file (.obj, .gltf, .glb) to look at in a new scene (the
+    /// built-in default scene when absent).
     pub scene: Option<PathBuf>,
     /// Colours of the terminal preview (default: truecolor when COLORTERM says so or the terminal
     /// answers that it has it, else 256). Wins over detection and over NO_COLOR.
@@ -65,7 +66,7 @@ pub enum Command {
     View(view::ViewArgs),
     /// Print a scene's objects, triangle counts and bounds.
     Info {
-        /// Scene file.
+        /// Scene file, or a model file (.obj, .gltf, .glb) shown on its own.
         scene: PathBuf,
     },
     /// Repeat the study's two experiments for the three algorithms and write a report.
@@ -104,10 +105,15 @@ fn refuse_dumb_terminal(term: Option<&str>) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Loads the scene at `path`, or the built-in default scene; returns it with the directory its
-/// OBJ paths are relative to.
+/// Loads the scene at `path` (or, for a model file, a scene showing it), or the built-in
+/// default scene; returns it with the directory its model paths are relative to.
 pub fn load_scene(path: Option<&Path>) -> anyhow::Result<(Scene, PathBuf)> {
     match path {
+        Some(path) if rastray::model_scene::is_model_path(path) => {
+            let scene = rastray::model_scene::scene_for_model(path)?;
+            let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+            Ok((scene, base))
+        }
         Some(path) => {
             let scene = rastray::scene::load(path)?;
             let base = path.parent().map(Path::to_path_buf).unwrap_or_default();

@@ -18,7 +18,8 @@ const PROGRESS_DELAY: Duration = Duration::from_millis(400);
 
 #[derive(Debug, Args)]
 pub struct RenderArgs {
-    /// Scene file (TOML); the built-in default scene when absent.
+    /// Scene file (TOML), or a model file (.obj, .gltf, .glb) shown on its own; the built-in
+    /// default scene when absent.
     pub scene: Option<PathBuf>,
     /// Algorithm.
     #[arg(short, long, value_enum, default_value_t = AlgorithmArg(Algorithm::Phong))]

@@ -24,7 +24,8 @@ const DEFAULT_COLS: u32 = 80;
 
 #[derive(Debug, Args)]
 pub struct ViewArgs {
-    /// Scene file (TOML); the built-in default scene when absent.
+    /// Scene file (TOML), or a model file (.obj, .gltf, .glb) shown on its own; the built-in
+    /// default scene when absent.
     pub scene: Option<PathBuf>,
     /// Algorithm.
     #[arg(short, long, value_enum, default_value_t = AlgorithmArg(Algorithm::Phong))]

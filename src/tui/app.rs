@@ -5,6 +5,7 @@
 
 use std::path::PathBuf;
 
+use super::disk_watch::DiskWatch;
 use super::document::Document;
 use super::export_job::ExportJob;
 use super::mode::Mode;
@@ -87,13 +88,17 @@ pub struct App {
     pub(super) quit: bool,
     /// Warnings of the last world built; the status line shows those it did not have before.
     pub(super) warnings: Vec<Warning>,
+    /// The scene file and model files, watched for writes by other programs.
+    pub(super) disk: DiskWatch,
+    /// Set when a tick changed what the screen shows (a reload); the event loop redraws.
+    pub(super) ticked_change: bool,
 }
 
 impl App {
     /// An editor on `scene`, loaded from `path` (or built in), with OBJ paths relative to
     /// `base_dir`; the view starts from the scene's camera.
     pub fn new(scene: Scene, path: Option<PathBuf>, base_dir: PathBuf) -> App {
-        App {
+        let mut app = App {
             view: ViewState::new(scene.camera),
             doc: Document::new(scene, path, base_dir),
             selection: Selection::default(),
@@ -104,7 +109,11 @@ impl App {
             drag: None,
             quit: false,
             warnings: Vec::new(),
-        }
+            disk: DiskWatch::default(),
+            ticked_change: false,
+        };
+        app.disk.sync(&app.doc);
+        app
     }
 
     /// The same editor drawing its preview with `color`.
@@ -209,7 +218,7 @@ impl App {
     pub fn title(&self) -> String {
         match self.doc.path() {
             Some(p) => super::text::clean(&p.display().to_string()),
-            None => "(built-in scene)".into(),
+            None => format!("({})", super::text::clean(self.doc.untitled_name())),
         }
     }
 

@@ -26,6 +26,8 @@ pub struct Document {
     dirty: bool,
     /// Bumped on every change of the scene or of the folder its mesh paths are relative to.
     generation: u64,
+    /// What the scene is called while it has no file.
+    untitled: String,
 }
 
 impl Document {
@@ -40,7 +42,18 @@ impl Document {
             redo: Vec::new(),
             dirty: false,
             generation: 0,
+            untitled: "built-in scene".into(),
         }
+    }
+
+    /// Calls the scene `name` while it has no file (a scene made for a model file, say).
+    pub fn name_untitled(&mut self, name: impl Into<String>) {
+        self.untitled = name.into();
+    }
+
+    /// What the scene is called while it has no file: "built-in scene" unless named otherwise.
+    pub fn untitled_name(&self) -> &str {
+        &self.untitled
     }
 
     /// The scene as edited.
@@ -133,6 +146,23 @@ impl Document {
         }
         self.mark_saved();
         Ok(())
+    }
+
+    /// Takes `scene`, the document's file as another program rewrote it, as one undoable step:
+    /// the document then matches its file again. Returns `false`, changing nothing, when the file
+    /// holds the scene already (the editor's own save, read back).
+    pub fn reload(&mut self, scene: Scene) -> bool {
+        let changed = self.edit(scene);
+        if changed {
+            self.mark_saved();
+        }
+        changed
+    }
+
+    /// The model files the scene uses were rewritten on disk: the world must be built again,
+    /// though the scene itself is unchanged.
+    pub fn models_changed(&mut self) {
+        self.generation += 1;
     }
 
     /// Replaces the document with the scene file at `path`, without history; on error nothing

@@ -10,6 +10,9 @@ pub enum TuiError {
     /// The scene file could not be read, or the recovery file not written.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// The model file opened on its own could not be shown.
+    #[error(transparent)]
+    Model(#[from] crate::model_scene::ModelSceneError),
     /// The built-in scene needs a working directory for its OBJ paths.
     #[error("no working directory")]
     WorkingDirectory(#[source] io::Error),

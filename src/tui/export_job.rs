@@ -7,7 +7,7 @@ use std::thread::JoinHandle;
 use std::time::Instant;
 
 use crate::World;
-use crate::export::{Output, Turntable, render_to_file};
+use crate::export::{ImageFormat, Output, Turntable, render_to_file};
 use crate::render::{Progress, RenderOptions};
 use crate::scene::Scene;
 
@@ -69,8 +69,13 @@ impl ExportJob {
 }
 
 /// What the export dialog asks for: a still image when `turntable` (frames, as typed) is 0,
-/// else a turntable of that many frames; the format follows the extension of `path`.
-pub fn export_output(path: &Path, turntable: &str) -> Result<Output, String> {
+/// else a turntable of that many frames; in the `requested` format, or the one the extension of
+/// `path` names.
+pub fn export_output(
+    path: &Path,
+    requested: Option<ImageFormat>,
+    turntable: &str,
+) -> Result<Output, String> {
     let frames: u32 = turntable
         .trim()
         .parse()
@@ -79,5 +84,5 @@ pub fn export_output(path: &Path, turntable: &str) -> Result<Output, String> {
     if let Some(t) = turntable {
         t.check().map_err(|e| e.to_string())?;
     }
-    Output::for_path(path, None, turntable).map_err(|e| e.to_string())
+    Output::for_path(path, requested, turntable).map_err(|e| e.to_string())
 }

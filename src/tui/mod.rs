@@ -10,6 +10,7 @@ pub mod app;
 pub mod autosave;
 pub mod color_probe;
 pub mod compact_backend;
+pub mod disk_watch;
 pub mod document;
 pub mod error;
 pub mod export_job;
@@ -208,6 +209,7 @@ pub fn run(scene_path: Option<PathBuf>, startup: color_probe::Startup) -> Result
             }
         }
         update::apply(&mut app, Action::Tick);
+        redraw |= std::mem::take(&mut app.ticked_change);
         if let Some(problem) = autosave.note(&app) {
             app.error(problem);
         }
@@ -241,11 +243,22 @@ pub fn run(scene_path: Option<PathBuf>, startup: color_probe::Startup) -> Result
         .map_or(ended, |signal| Ok(Exit::Signal(signal)))
 }
 
-/// The app on the scene at `path`, or on the built-in scene.
 /// The editor on the scene at `path`; a path that does not exist yet starts a new scene there
 /// from the built-in one (written on the first save), as text editors do with a new file name.
+/// A model file (OBJ, glTF) starts a new, unnamed scene showing it.
 fn load(path: Option<&Path>) -> Result<App, TuiError> {
     Ok(match path {
+        Some(p) if crate::model_scene::is_model_path(p) => {
+            let scene = crate::model_scene::scene_for_model(p)?;
+            let mut app = App::new(scene, None, document::folder_of(p));
+            let file = p.file_name().unwrap_or_default().to_string_lossy();
+            app.doc.name_untitled(format!("new scene of {file}"));
+            app.info(format!(
+                "a new scene showing {}: s saves it as a scene file",
+                crate::tui::text::clean(&p.display().to_string())
+            ));
+            app
+        }
         Some(p) if !p.exists() => {
             let base = document::folder_of(p);
             let mut app = App::new(crate::scene::default_scene(), Some(p.to_path_buf()), base);

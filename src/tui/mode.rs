@@ -1,6 +1,7 @@
 //! What the keys currently do: browsing, typing a value or a path, a menu, the export dialog,
 //! the help overlay or the quit question, with what each has typed so far.
 
+use crate::export::ImageFormat;
 use crate::render::Algorithm;
 
 /// A line of typed text with the error of the last attempt to use it.
@@ -42,16 +43,22 @@ pub enum ExportField {
     Size,
     Algorithm,
     Samples,
+    /// The encoding: by the file's extension, or a named format.
+    Format,
+    /// Opaque background, or coverage as alpha.
+    Background,
     Turntable,
 }
 
 impl ExportField {
     /// Every field, in dialog order.
-    pub const ALL: [ExportField; 5] = [
+    pub const ALL: [ExportField; 7] = [
         ExportField::Path,
         ExportField::Size,
         ExportField::Algorithm,
         ExportField::Samples,
+        ExportField::Format,
+        ExportField::Background,
         ExportField::Turntable,
     ];
 }
@@ -60,8 +67,12 @@ impl ExportField {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ExportForm {
     pub path: String,
+    /// The format asked for; `None` takes the one the file's extension names.
+    pub format: Option<ImageFormat>,
     pub size: String,
     pub algorithm: Algorithm,
+    /// Coverage as alpha instead of the background colour.
+    pub transparent: bool,
     pub samples: String,
     /// Turntable frames; 0 writes a still image.
     pub turntable: String,

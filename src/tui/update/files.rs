@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 
 use super::edits::add_object;
 use super::{type_into, type_line};
+use crate::export::ImageFormat;
 use crate::render::{Algorithm, RenderOptions, Size};
 use crate::scene::{Object, Shape, ShapeKind};
 use crate::tui::action::Action;
@@ -28,6 +29,7 @@ pub(super) fn save(app: &mut App) {
 
 pub(super) fn save_to(app: &mut App, path: &Path) -> Result<(), String> {
     app.doc.save_to(path).map_err(|e| e.to_string())?;
+    app.disk.sync(&app.doc);
     app.info(format!("saved {}", path.display()));
     Ok(())
 }
@@ -89,6 +91,7 @@ pub(super) fn prompt(
 /// algorithm and colours.
 pub fn open(app: &mut App, path: &Path) -> Result<(), String> {
     app.doc.open(path).map_err(|e| e.to_string())?;
+    app.disk.sync(&app.doc);
     app.view.look_from(app.doc.scene().camera);
     app.selection = Selection::default();
     app.previews = Previews::default();
@@ -109,8 +112,10 @@ pub(super) fn open_export(app: &mut App) {
         .unwrap_or_else(|| "render".into());
     app.mode = Mode::Export(ExportForm {
         path: format!("{stem}.png"),
+        format: None,
         size: "1920x1080".into(),
         algorithm: app.view.algorithm(),
+        transparent: false,
         samples: "1".into(),
         turntable: "0".into(),
         field: ExportField::Path,
@@ -127,7 +132,7 @@ pub(super) fn export_form(app: &mut App, mut form: ExportForm, action: Action) -
         ExportField::Size => Some(&mut form.size),
         ExportField::Samples => Some(&mut form.samples),
         ExportField::Turntable => Some(&mut form.turntable),
-        ExportField::Algorithm => None,
+        ExportField::Format | ExportField::Algorithm | ExportField::Background => None,
     };
     if let Some(text) = text {
         // As in a spreadsheet: the first character typed into a field replaces its value.
@@ -155,6 +160,10 @@ pub(super) fn export_form(app: &mut App, mut form: ExportForm, action: Action) -
         Action::Input(c @ '1'..='3') if form.field == ExportField::Algorithm => {
             form.algorithm = Algorithm::ALL[c as usize - '1' as usize];
         }
+        Action::Step(n) if form.field == ExportField::Format => step_format(&mut form, n),
+        Action::Step(_) | Action::Input(' ') if form.field == ExportField::Background => {
+            form.transparent = !form.transparent;
+        }
         Action::Submit => match start_export(app, &form) {
             Ok(()) => return Mode::Normal,
             Err(message) => form.error = Some(message),
@@ -162,6 +171,25 @@ pub(super) fn export_form(app: &mut App, mut form: ExportForm, action: Action) -
         _ => {}
     }
     Mode::Export(form)
+}
+
+/// Moves the format choice one step through "by the name", then each format in `--format`
+/// order; a named format also gives the file its extension, so name and bytes agree.
+fn step_format(form: &mut ExportForm, n: i32) {
+    let choices: Vec<Option<ImageFormat>> = std::iter::once(None)
+        .chain(ImageFormat::ALL.map(Some))
+        .collect();
+    let at = choices.iter().position(|&c| c == form.format).unwrap_or(0);
+    form.format = choices[(at as i32 + n.signum()).rem_euclid(choices.len() as i32) as usize];
+    if let Some(format) = form.format {
+        let path = Path::new(form.path.trim());
+        if path.file_stem().is_some() {
+            form.path = path
+                .with_extension(format.extension())
+                .to_string_lossy()
+                .into_owned();
+        }
+    }
 }
 
 pub(super) fn start_export(app: &mut App, form: &ExportForm) -> Result<(), String> {
@@ -176,6 +204,7 @@ pub(super) fn start_export(app: &mut App, form: &ExportForm) -> Result<(), Strin
         .map_err(|_| format!("`{}` is not a sample count", form.samples.trim()))?;
     let options = RenderOptions {
         samples,
+        alpha: form.transparent,
         ..RenderOptions::new(form.algorithm, size.width, size.height)
     };
     options.check().map_err(|e| e.to_string())?;
@@ -186,7 +215,7 @@ pub(super) fn start_export(app: &mut App, form: &ExportForm) -> Result<(), Strin
     // The export shows what the preview shows: the scene as edited, seen from the view.
     let mut scene = app.doc.scene().clone();
     scene.camera = app.view.camera();
-    let output = export_output(&path, &form.turntable)?;
+    let output = export_output(&path, form.format, &form.turntable)?;
     app.export = Some(ExportJob::start(
         scene,
         app.doc.base_dir(),

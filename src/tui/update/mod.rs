@@ -4,6 +4,7 @@
 
 mod edits;
 mod files;
+mod reload;
 
 pub use files::open;
 
@@ -26,7 +27,10 @@ const DRAG_PITCH: f32 = 4.0;
 pub fn apply(app: &mut App, action: Action) {
     match action {
         Action::Rendered(reply) => return rendered(app, *reply),
-        Action::Tick => return poll_export(app),
+        Action::Tick => {
+            poll_export(app);
+            return reload::poll_disk(app, std::time::Instant::now());
+        }
         _ => {}
     }
     let scene_camera = app.doc.scene().camera;

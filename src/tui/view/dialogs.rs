@@ -84,25 +84,33 @@ impl Widget for Prompt<'_> {
     }
 }
 
-/// File, size, algorithm, samples and turntable frames of an export.
+/// File, format, size, algorithm, samples, background and turntable frames of an export.
 pub struct ExportDialog<'a>(pub &'a ExportForm);
 
 impl Widget for ExportDialog<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let form = self.0;
-        let popup = centered(area, 60, 10);
+        let popup = centered(area, 60, 12);
         Clear.render(popup, buf);
         let row = |label: &str, field: ExportField, value: String| {
             let active = form.field == field;
             Line::from(vec![
                 Span::styled(
-                    format!("{}{label:<10}", if active { "▶ " } else { "  " }),
+                    format!("{}{label:<11}", if active { "▶ " } else { "  " }),
                     if active { theme::ACCENT } else { theme::LABEL },
                 ),
                 input_line(&value, active),
             ])
         };
         let algorithm = format!("◀ {} ▶", form.algorithm);
+        let format = match form.format {
+            Some(format) => format!("◀ {format} ▶"),
+            None => "◀ by extension ▶".to_string(),
+        };
+        let background = match form.transparent {
+            true => "◀ transparent ▶",
+            false => "◀ opaque ▶",
+        };
         let mut turntable = row("turntable", ExportField::Turntable, form.turntable.clone());
         turntable.push_span(Span::styled(
             "  frames (.gif, .png); 0: image (.png, .exr)",
@@ -113,10 +121,16 @@ impl Widget for ExportDialog<'_> {
             row("size", ExportField::Size, form.size.clone()),
             row("algorithm", ExportField::Algorithm, algorithm),
             row("samples", ExportField::Samples, form.samples.clone()),
+            row("format", ExportField::Format, format),
+            row(
+                "background",
+                ExportField::Background,
+                background.to_string(),
+            ),
             turntable,
             error_line(&form.error),
             Line::styled(
-                "↑↓ field · ←→ algorithm · Enter export · Esc cancel",
+                "↑↓ field · ←→ choose · Enter export · Esc cancel",
                 theme::DIM,
             ),
         ])

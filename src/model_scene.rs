@@ -1,0 +1,116 @@
+//! A scene made for a model file opened on its own (`rastray model.glb`, `rastray render
+//! bunny.obj -o bunny.png`): the model, scaled to fit a sphere of radius 1 about the origin,
+//! seen whole from the front, a little above and to the right, under a key light and a fill
+//! light. Saved, it is an ordinary scene file.
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+
+use crate::mesh::{MeshFile, MeshFileError};
+use crate::scene::{Camera, Light, Object, Scene, Shape, ShapeKind, default_scene};
+
+/// Radius of the sphere the model is scaled to fit, world units.
+pub const FIT_RADIUS: f32 = 1.0;
+
+/// Vertical field of view of the camera, degrees.
+const FOV: f32 = 40.0;
+
+/// Whether `path` names a model file (`.obj`, `.gltf`, `.glb`, any case) rather than a scene.
+pub fn is_model_path(path: &Path) -> bool {
+    path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+        ["obj", "gltf", "glb"]
+            .iter()
+            .any(|m| e.eq_ignore_ascii_case(m))
+    })
+}
+
+/// A model file that cannot be shown.
+#[derive(Debug, thiserror::Error)]
+pub enum ModelSceneError {
+    /// The file could not be read as a model (the error names it).
+    #[error(transparent)]
+    Load(#[from] MeshFileError),
+    /// The file holds nothing to draw.
+    #[error("{}: the model has no triangles to show", path.display())]
+    Empty { path: PathBuf },
+}
+
+/// The scene showing the model at `path`, with its mesh path written as the file's name: the
+/// scene's folder is the model's folder.
+pub fn scene_for_model(path: &Path) -> Result<Scene, ModelSceneError> {
+    let model = MeshFile::load(path)?;
+    let (lo, hi) = model.bounds();
+    let radius = (hi - lo).length() / 2.0;
+    if model.triangle_count() == 0 || !radius.is_finite() || radius <= 0.0 {
+        return Err(ModelSceneError::Empty {
+            path: path.to_path_buf(),
+        });
+    }
+    let name = path.file_name().map(PathBuf::from).unwrap_or_default();
+    let mut object = Object::new(Shape::new(ShapeKind::Mesh, Vec3::ZERO, name.clone()));
+    if let Shape::Mesh { scale, .. } = &mut object.shape {
+        *scale = FIT_RADIUS / radius;
+    }
+    object.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+    Ok(Scene {
+        camera: framing_camera(),
+        lights: vec![
+            light("key", Vec3::new(-3.0, 4.0, 4.0), 0.85),
+            light("fill", Vec3::new(4.0, 1.5, 2.5), 0.35),
+        ],
+        objects: vec![object],
+        ..default_scene()
+    })
+}
+
+/// A camera that sees the whole sphere of radius [`FIT_RADIUS`] about the origin, with a
+/// little room, whatever the image's aspect (the vertical field of view is the narrower one
+/// for every landscape image).
+fn framing_camera() -> Camera {
+    let half = (FOV / 2.0).to_radians();
+    let distance = FIT_RADIUS / half.sin() * 1.1;
+    Camera {
+        position: Vec3::new(0.45, 0.35, 1.0).normalize() * distance,
+        target: Vec3::ZERO,
+        up: Vec3::Y,
+        fov: FOV,
+    }
+}
+
+fn light(name: &str, position: Vec3, intensity: f32) -> Light {
+    Light {
+        name: Some(name.into()),
+        position,
+        intensity,
+        color: Vec3::ONE,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn model_files_are_told_from_scenes_by_their_extension() {
+        for model in ["a.obj", "b.GLB", "dir/c.gltf"] {
+            assert!(is_model_path(Path::new(model)), "{model}");
+        }
+        for scene in ["a.toml", "obj", "a.obj.toml", "a"] {
+            assert!(!is_model_path(Path::new(scene)), "{scene}");
+        }
+    }
+
+    #[test]
+    fn the_camera_sees_the_whole_fitted_sphere() {
+        let camera = framing_camera();
+        let to_centre = (camera.target - camera.position).length();
+        // The sphere's angular radius from the eye is inside half the field of view.
+        let seen = (FIT_RADIUS / to_centre).asin().to_degrees();
+        assert!(seen < camera.fov / 2.0, "{seen} ≥ {}", camera.fov / 2.0);
+        assert!(
+            seen > camera.fov / 2.0 * 0.8,
+            "the model fills the view: {seen}"
+        );
+    }
+}
