@@ -265,7 +265,7 @@ fn the_preview_looks_through_the_view() {
     let mut app = app();
     run(&mut app, look_around());
     let picture = ratatui::layout::Rect::new(0, 0, 40, 12);
-    let wanted = rastray::tui::wanted(&app, picture).expect("a preview is wanted");
+    let wanted = rastray::tui::wanted(&app, picture, true).expect("a preview is wanted");
     assert_eq!(wanted.camera, app.view().camera());
     assert_ne!(wanted.camera, app.document().scene().camera);
     assert_eq!(wanted.generation, app.document().generation());

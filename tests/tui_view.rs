@@ -1,5 +1,5 @@
-//! Screens drawn with ratatui's TestBackend: insta snapshots of the layout and overlays, and the
-//! preview's cell colours checked pixel by pixel (snapshots hold no colours).
+//! Screens drawn with ratatui's TestBackend: insta snapshots of the layout and overlays at several
+//! terminal sizes, and the cell colours checked through the buffer (snapshots hold no colours).
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -8,8 +8,12 @@ use glam::Vec3;
 use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::scene::default_scene;
+use rastray::terminal_image::{CellSize, Protocol};
 use rastray::tui::action::Action;
 use rastray::tui::app::App;
+use rastray::tui::graphics::Graphics;
+use rastray::tui::input::map_too_small;
+use rastray::tui::keys::KEYS;
 use rastray::tui::preview::{ColorMode, PreviewImage, halves_match, nearest_256};
 use rastray::tui::selection::{Focus, Item};
 use rastray::tui::update::apply;
@@ -18,6 +22,7 @@ use rastray::tui::worker::{RenderReply, Slot};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
+use ratatui::crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use ratatui::layout::Rect;
 use ratatui::style::Color;
 use ratatui::widgets::Widget;
@@ -347,4 +352,251 @@ fn the_preview_says_when_the_view_left_the_scene_camera() {
     apply(&mut app, Action::SceneCameraFromView);
     assert!(!title(&app).contains("view moved"));
     assert!(title(&app).contains("● modified"));
+}
+
+// Small terminals: whole screens at 80×24, 60×20 and 10×5, with the colours of chosen cells
+// checked through the buffer, values shown whole where labels give way, and keys on the
+// "too small" screen changing nothing.
+
+/// The app with a preview of the size its layout at `width`×`height` asks for (none when the
+/// terminal is too small for the editor).
+fn small_app(width: u16, height: u16) -> App {
+    let mut app = app();
+    if layout(Rect::new(0, 0, width, height), &app).is_some() {
+        fill_previews(&mut app, width, height);
+    }
+    app
+}
+
+/// The screen at `width`×`height`.
+fn buffer(app: &App, width: u16, height: u16) -> Buffer {
+    draw(app, width, height).backend().buffer().clone()
+}
+
+/// Row `y` of `buf` as text.
+fn row(buf: &Buffer, y: u16) -> String {
+    (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect()
+}
+
+fn snapshot(buf: &Buffer) -> String {
+    (0..buf.area.height)
+        .map(|y| row(buf, y))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The preview's first cell shows the red left half in truecolor, and the bottom line hints in
+/// the dim colour, ending with help and quit.
+fn check_colours(buf: &Buffer, app: &App) {
+    let areas = layout(buf.area, app).unwrap();
+    let cell = &buf[(areas.picture.x, areas.picture.y)];
+    assert_eq!(cell.bg, Color::Rgb(200, 60, 40), "preview colour");
+    let right = &buf[(areas.picture.right() - 1, areas.picture.y)];
+    assert_eq!(
+        (right.symbol(), right.fg, right.bg),
+        ("▀", Color::Rgb(20, 30, 40), Color::Rgb(90, 90, 90)),
+        "both halves of a cell"
+    );
+    let hints_y = buf.area.height - 1;
+    let hints = row(buf, hints_y);
+    assert!(hints.trim_end().ends_with("? help · q quit"), "{hints}");
+    assert_eq!(buf[(2, hints_y)].fg, Color::DarkGray, "hints are dim");
+    let status = row(buf, hints_y - 1);
+    assert_eq!(buf[(1, hints_y - 1)].fg, Color::Cyan, "{status}");
+}
+
+#[test]
+fn at_80_by_24() {
+    let app = small_app(80, 24);
+    let buf = buffer(&app, 80, 24);
+    check_colours(&buf, &app);
+    insta::assert_snapshot!(snapshot(&buf));
+}
+
+#[test]
+fn at_60_by_20_values_show_whole_and_labels_give_way() {
+    let mut app = small_app(60, 20);
+    while app.item() != Item::Object(1) {
+        apply(&mut app, Action::Down);
+    }
+    apply(&mut app, Action::FocusNext);
+    assert_eq!(app.focus(), Focus::Properties);
+    let buf = buffer(&app, 60, 20);
+    check_colours(&buf, &app);
+    let text = snapshot(&buf);
+    let shows_whole = |text: &str, label: &str, value: &str| {
+        text.lines()
+            .filter(|l| l.contains(label))
+            .any(|l| l.contains(&format!(" {value} ")) || l.contains(&format!(" {value}┃")))
+    };
+    // The gem's centre and radius, each value whole.
+    for (label, value) in [("center.x", "-2.2"), ("radius", "1.2")] {
+        assert!(
+            shows_whole(&text, label, value),
+            "{label} {value} is cut:\n{text}"
+        );
+    }
+    // Further down the list: its colour and material, whole too.
+    let mut below = small_app(60, 20);
+    while below.item() != Item::Object(1) {
+        apply(&mut below, Action::Down);
+    }
+    apply(&mut below, Action::FocusNext);
+    for _ in 0..15 {
+        apply(&mut below, Action::Down);
+    }
+    let lower = snapshot(&buffer(&below, 60, 20));
+    for (label, value) in [
+        ("color.g", "0.12"),
+        ("specular", "0.7"),
+        ("reflection", "0.2"),
+    ] {
+        let cut = &label[..label.len().min(8)];
+        assert!(
+            shows_whole(&lower, cut, value),
+            "{label} {value} is cut:\n{lower}"
+        );
+    }
+    // The selected property is highlighted.
+    let areas = layout(buf.area, &app).unwrap();
+    let selected = &buf[(areas.properties.x + 2, areas.properties.y + 1)];
+    assert_eq!(selected.bg, Color::Yellow);
+    insta::assert_snapshot!(text);
+}
+
+#[test]
+fn at_10_by_5_the_screen_says_it_is_too_small() {
+    let app = small_app(10, 5);
+    let buf = buffer(&app, 10, 5);
+    let text = snapshot(&buf);
+    assert!(
+        text.contains("terminal") && text.contains("small"),
+        "{text}"
+    );
+    // Nothing of the picture is drawn: every cell keeps the terminal's colours.
+    assert!(
+        buf.content
+            .iter()
+            .all(|c| c.fg == Color::Reset && c.bg == Color::Reset)
+    );
+    insta::assert_snapshot!(text);
+}
+
+fn key_event(code: KeyCode) -> Event {
+    let modifiers = match code {
+        KeyCode::Char(c) if c.is_ascii_uppercase() => KeyModifiers::SHIFT,
+        _ => KeyModifiers::NONE,
+    };
+    Event::Key(KeyEvent::new(code, modifiers))
+}
+
+#[test]
+fn keys_on_the_too_small_screen_change_nothing_but_quit_and_help_act() {
+    let mut app = app();
+    let before = format!("{:?}", app.document().scene());
+    let view_before = app.view().clone();
+    // Every key the table names, plus the ones a user types by habit.
+    let mut codes: Vec<KeyCode> =
+        "abcdefghijklmnoprstuvwxyzABCDEFGHIJKLMNOPRSTUVWXYZ0123456789[]+-=<>,./ "
+            .chars()
+            .map(KeyCode::Char)
+            .collect();
+    codes.extend([
+        KeyCode::Up,
+        KeyCode::Down,
+        KeyCode::Left,
+        KeyCode::Right,
+        KeyCode::Enter,
+        KeyCode::Tab,
+        KeyCode::BackTab,
+        KeyCode::Esc,
+        KeyCode::Delete,
+        KeyCode::Backspace,
+    ]);
+    assert!(!KEYS.is_empty());
+    // On a screen of normal size these keys do act.
+    let acting =
+        |c: char| rastray::tui::input::map(&app, &key_event(KeyCode::Char(c)), Rect::default());
+    assert!(acting('a').is_some() && acting('x').is_some() && acting(']').is_some());
+    for code in codes {
+        if let Some(action) = map_too_small(&app, &key_event(code)) {
+            assert!(
+                matches!(
+                    action,
+                    Action::Quit | Action::QuitNow | Action::SaveAndQuit | Action::Help
+                ),
+                "{code:?} acts unseen: {action:?}"
+            );
+        }
+    }
+    assert_eq!(format!("{:?}", app.document().scene()), before);
+    assert_eq!(app.view(), &view_before);
+    assert!(matches!(
+        map_too_small(&app, &key_event(KeyCode::Char('?'))),
+        Some(Action::Help)
+    ));
+    assert!(matches!(
+        map_too_small(&app, &key_event(KeyCode::Char('q'))),
+        Some(Action::Quit | Action::QuitNow)
+    ));
+    // Inside the help, its own keys work (it can be seen).
+    apply(&mut app, Action::Help);
+    assert!(map_too_small(&app, &key_event(KeyCode::Esc)).is_some());
+}
+
+/// The app drawing its preview in sixel on 10×20-pixel cells, with a frame of the size rendered
+/// for real pixels at `width`×`height`.
+fn sixel_app(width: u16, height: u16) -> App {
+    let graphics = Graphics {
+        protocol: Some(Protocol::Sixel),
+        cell: CellSize {
+            width: 10,
+            height: 20,
+        },
+        tmux_pane: None,
+        why: None,
+    };
+    let mut app = app().with_graphics(graphics.clone());
+    let p = layout(Rect::new(0, 0, width, height), &app)
+        .unwrap()
+        .picture;
+    let (w, h) = graphics.pixel_size(p.width, p.height).unwrap();
+    apply(
+        &mut app,
+        Action::Rendered(Box::new(RenderReply::Shot {
+            id: 1,
+            slot: Slot::Main,
+            image: stripes(w, h),
+            millis: 1.0,
+            triangles: 112,
+            last: true,
+        })),
+    );
+    app
+}
+
+#[test]
+fn a_picture_in_pixels_lies_over_blank_cells_that_a_dialog_rewrites() {
+    let mut app = sixel_app(100, 30);
+    let picture = layout(Rect::new(0, 0, 100, 30), &app).unwrap().picture;
+    let placed = rastray::tui::view::placements(&app, picture);
+    assert_eq!(placed.len(), 1);
+    assert_eq!(placed[0].area, picture);
+    let under = buffer(&app, 100, 30);
+    assert!(picture.positions().all(|p| under[p].symbol() == " "));
+    assert!(row(&under, 28).contains("│ sixel │"), "{}", row(&under, 28));
+    // The help opens over the preview: no picture, and every cell that lay under it is written
+    // again (a sixel picture is wiped only where cells are written).
+    apply(&mut app, Action::Help);
+    assert!(rastray::tui::view::placements(&app, picture).is_empty());
+    let over = buffer(&app, 100, 30);
+    let changed: std::collections::HashSet<(u16, u16)> = under
+        .diff(&over)
+        .into_iter()
+        .map(|(x, y, _)| (x, y))
+        .collect();
+    assert!(
+        picture.positions().all(|p| changed.contains(&(p.x, p.y))),
+        "cells under the picture are left as they were"
+    );
 }

@@ -4,6 +4,7 @@
 mod algorithm_arg;
 mod bench;
 mod format_arg;
+mod graphics_arg;
 mod info;
 mod render;
 mod view;
@@ -32,6 +33,10 @@ pub struct Cli {
     /// answers that it has it, else 256). Wins over detection and over NO_COLOR.
     #[arg(long, value_enum)]
     pub color: Option<ColorArg>,
+    /// How the editor's preview is drawn (default: asked of the terminal: kitty, iTerm2 or
+    /// sixel graphics where it answers for them, else half blocks). The status line names it.
+    #[arg(long, value_enum, default_value_t = graphics_arg::GraphicsArg::Auto)]
+    pub graphics: graphics_arg::GraphicsArg,
 }
 
 /// The `--color` values, spelled as users type them.
@@ -78,8 +83,10 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Some(Command::Bench(args)) => bench::run_bench(&args).map(|()| ExitCode::SUCCESS),
         None => {
             refuse_dumb_terminal(std::env::var("TERM").ok().as_deref())?;
-            let color = cli.color.map_or_else(ColorMode::detect, ColorMode::from);
-            let exit = rastray::tui::run(cli.scene, color)?;
+            let request = cli.graphics.editor_request()?;
+            let startup =
+                rastray::tui::color_probe::detect(cli.color.map(ColorMode::from), request);
+            let exit = rastray::tui::run(cli.scene, startup)?;
             Ok(ExitCode::from(exit.code()))
         }
     }

@@ -7,14 +7,14 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use anyhow::Context;
-use clap::{Args, ValueEnum};
+use clap::Args;
 use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::terminal_image::{CellArea, CellSize, Protocol};
-use rastray::tui::ColorMode;
 use rastray::tui::preview::PreviewImage;
 
 use super::algorithm_arg::AlgorithmArg;
+use super::graphics_arg::GraphicsArg;
 
 /// Width / height of the picture: the shape of `rastray render`'s default 1920×1080.
 const ASPECT: f32 = 16.0 / 9.0;
@@ -38,33 +38,14 @@ pub struct ViewArgs {
     pub graphics: GraphicsArg,
 }
 
-/// The `--graphics` values.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum GraphicsArg {
-    /// kitty, iTerm2 or sixel by the environment; half blocks on other terminals; plain text
-    /// when stdout is not a terminal.
-    Auto,
-    Kitty,
-    Sixel,
-    Iterm2,
-    /// Half-block text in truecolor.
-    Halfblock,
-    /// A character ramp with no escape sequences.
-    Plain,
-}
-
 pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     let (scene, base) = super::load_scene(args.scene.as_deref())?;
     let stdout = std::io::stdout();
     let is_terminal = stdout.is_terminal();
-    let protocol = match args.graphics {
-        GraphicsArg::Auto => Protocol::detect(is_terminal, |k| std::env::var(k).ok()),
-        GraphicsArg::Kitty => Protocol::Kitty,
-        GraphicsArg::Sixel => Protocol::Sixel,
-        GraphicsArg::Iterm2 => Protocol::Iterm2,
-        GraphicsArg::Halfblock => Protocol::HalfBlock(ColorMode::Truecolor),
-        GraphicsArg::Plain => Protocol::Plain,
-    };
+    let protocol = args
+        .graphics
+        .view_protocol()
+        .unwrap_or_else(|| Protocol::detect(is_terminal, |k| std::env::var(k).ok()));
     let terminal_cols = is_terminal
         .then(|| ratatui::crossterm::terminal::size().ok())
         .flatten()

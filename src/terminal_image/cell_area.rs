@@ -44,14 +44,20 @@ impl CellArea {
     /// Pixel size for a pixel protocol: the area at `cell` pixels per cell, scaled down to at
     /// most [`PIXEL_BUDGET`] pixels.
     pub fn pixels(self, cell: CellSize) -> (u32, u32) {
+        self.pixels_within(cell, PIXEL_BUDGET)
+    }
+
+    /// Pixel size for a pixel protocol: the area at `cell` pixels per cell, scaled down with
+    /// its aspect kept to at most `budget` pixels.
+    pub fn pixels_within(self, cell: CellSize, budget: u64) -> (u32, u32) {
         let (w, h) = (
             u64::from(self.cols) * u64::from(cell.width.max(1)),
             u64::from(self.rows) * u64::from(cell.height.max(1)),
         );
-        if w * h <= PIXEL_BUDGET {
+        if w * h <= budget {
             return (w as u32, h as u32);
         }
-        let scale = (PIXEL_BUDGET as f64 / (w * h) as f64).sqrt();
+        let scale = (budget as f64 / (w * h) as f64).sqrt();
         let fit = |v: u64| ((v as f64 * scale).floor() as u32).max(1);
         (fit(w), fit(h))
     }

@@ -9,6 +9,7 @@ pub mod halfblock;
 pub mod iterm2;
 pub mod kitty;
 pub mod median_cut;
+pub mod passthrough;
 pub mod png;
 pub mod protocol;
 pub mod sixel;

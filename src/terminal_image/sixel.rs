@@ -20,28 +20,38 @@ pub fn encode(image: &PreviewImage) -> Vec<u8> {
         let _ = write!(out, "#{i};2;{};{};{}", pct(*r), pct(*g), pct(*b));
     }
     let (width, height) = (image.width as usize, image.height as usize);
+    // The band's six-pixel columns for each colour, filled in one pass over its pixels: one
+    // row of `width` per colour used, found through `row_of`.
+    let mut row_of = [usize::MAX; MAX_COLOURS];
+    let mut bits: Vec<u8> = Vec::new();
     for top in (0..height).step_by(6) {
         let rows = (height - top).min(6);
-        let mut used = [false; MAX_COLOURS];
-        for y in top..top + rows {
-            for &c in &indices[y * width..(y + 1) * width] {
-                used[usize::from(c)] = true;
+        let mut used: Vec<usize> = Vec::new();
+        for dy in 0..rows {
+            let y = top + dy;
+            for (x, &c) in indices[y * width..(y + 1) * width].iter().enumerate() {
+                let c = usize::from(c);
+                if row_of[c] == usize::MAX {
+                    row_of[c] = used.len();
+                    used.push(c);
+                    bits.resize(used.len() * width, 0);
+                }
+                bits[row_of[c] * width + x] |= 1 << dy;
             }
         }
-        let mut first = true;
-        for colour in (0..MAX_COLOURS).filter(|&c| used[c]) {
-            if !first {
+        used.sort_unstable();
+        for (n, &colour) in used.iter().enumerate() {
+            if n > 0 {
                 out.push('$');
             }
-            first = false;
             let _ = write!(out, "#{colour}");
-            let bits = (0..width).map(|x| {
-                (0..rows)
-                    .filter(|&dy| usize::from(indices[(top + dy) * width + x]) == colour)
-                    .fold(0u8, |acc, dy| acc | (1 << dy))
-            });
-            push_runs(&mut out, bits);
+            let row = row_of[colour] * width;
+            push_runs(&mut out, bits[row..row + width].iter().copied());
         }
+        for &colour in &used {
+            row_of[colour] = usize::MAX;
+        }
+        bits.clear();
         out.push('-');
     }
     out.push_str("\x1b\\");

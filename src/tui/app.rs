@@ -122,6 +122,12 @@ impl App {
         self
     }
 
+    /// The same editor drawing its preview with `graphics` (half blocks or real pixels).
+    pub fn with_graphics(mut self, graphics: super::graphics::Graphics) -> App {
+        self.view.set_graphics(graphics);
+        self
+    }
+
     /// The same editor drawing its interface without colours (`NO_COLOR`); the preview is a
     /// picture and keeps its own.
     pub fn with_plain_interface(mut self, plain: bool) -> App {

@@ -1,24 +1,52 @@
-//! Asking the terminal whether it shows 24-bit colour, for when the environment does not say
-//! (plain `ssh` forwards no `COLORTERM`). Two questions, each a terminal may ignore: XTGETTCAP
-//! for the `RGB` and `Tc` capabilities, and DECRQSS for the background just set to a truecolor
-//! value. Primary device attributes (`CSI c`), which every terminal answers, end the wait.
+//! Asking the terminal at start-up, once, what it can show: 24-bit colour when the environment
+//! does not say (plain `ssh` forwards no `COLORTERM`), pixel graphics and the cell size in
+//! pixels. Questions a terminal may ignore: XTGETTCAP for the `RGB` and `Tc` capabilities,
+//! DECRQSS for the background just set to a truecolor value, the kitty graphics query, XTVERSION
+//! and the cell and text-area sizes in pixels (`CSI 16 t`, `CSI 14 t`). Primary device
+//! attributes (`CSI c`), which every terminal answers, come last and end the wait; they also
+//! list sixel graphics (4).
 
 use std::io::{self, IsTerminal, Write};
 use std::os::fd::AsFd;
 use std::time::{Duration, Instant};
 
-use ratatui::crossterm::terminal::{disable_raw_mode, enable_raw_mode, is_raw_mode_enabled};
+use ratatui::crossterm::terminal::{
+    disable_raw_mode, enable_raw_mode, is_raw_mode_enabled, window_size,
+};
 use rustix::event::{PollFd, PollFlags, Timespec, poll};
 
+use super::graphics::{self, Facts, Graphics, GraphicsRequest};
 use super::preview::ColorMode;
 use super::term_input::{Decoder, Reply, TermInput};
+use crate::terminal_image::{kitty, passthrough};
 
-/// The questions, in order: XTGETTCAP `RGB` and `Tc` (names hex-encoded), a truecolor
-/// background then DECRQSS for the current SGR, a reset, and DA1 as the sentinel.
-pub const QUERY: &[u8] = b"\x1bP+q524742;5463\x1b\\\x1b[48;2;1;2;3m\x1bP$qm\x1b\\\x1b[0m\x1b[c";
+/// The colour questions: XTGETTCAP `RGB` and `Tc` (names hex-encoded), a truecolor background
+/// then DECRQSS for the current SGR, and a reset.
+pub const COLOR_QUERY: &[u8] = b"\x1bP+q524742;5463\x1b\\\x1b[48;2;1;2;3m\x1bP$qm\x1b\\\x1b[0m";
+
+/// The graphics questions after the kitty query: XTVERSION, the cell size and the text area in
+/// pixels.
+const SIZE_QUERY: &[u8] = b"\x1b[>0q\x1b[16t\x1b[14t";
+
+/// Primary device attributes: the sentinel every terminal answers.
+const DA1: &[u8] = b"\x1b[c";
+
+/// Everything asked at start-up, in order, DA1 last. Inside tmux the kitty query is sent
+/// through passthrough (`kitty_through_tmux`), since tmux itself does not answer it.
+pub fn query(kitty_through_tmux: bool) -> Vec<u8> {
+    let kitty = if kitty_through_tmux {
+        passthrough::tmux(kitty::QUERY)
+    } else {
+        kitty::QUERY.to_vec()
+    };
+    [COLOR_QUERY, &kitty, SIZE_QUERY, DA1].concat()
+}
 
 /// How long to wait for the sentinel before deciding on what has arrived.
 pub const TIMEOUT: Duration = Duration::from_millis(300);
+
+/// How long to wait for the sentinel when the environment hints at a terminal with pixels.
+pub const HINTED_TIMEOUT: Duration = Duration::from_millis(1500);
 
 /// The colour depth the environment states: truecolor for `COLORTERM=truecolor|24bit`,
 /// `None` when it is silent.
@@ -28,7 +56,7 @@ pub fn from_env(colorterm: Option<&str>) -> Option<ColorMode> {
         .map(|_| ColorMode::Truecolor)
 }
 
-/// The depth the terminal's `replies` to [`QUERY`] show: truecolor when XTGETTCAP reports
+/// The depth the terminal's `replies` to [`query`] show: truecolor when XTGETTCAP reports
 /// `RGB` or `Tc` as present, or DECRQSS echoes the truecolor background; 256 colours otherwise
 /// (only DA1, or nothing at all).
 pub fn decide(replies: &[Reply]) -> ColorMode {
@@ -53,38 +81,102 @@ fn has_rgb_capability(text: &str) -> bool {
     })
 }
 
-/// `1$r … m`: a valid DECRQSS answer whose SGR holds the background set by [`QUERY`], written
+/// `1$r … m`: a valid DECRQSS answer whose SGR holds the background set by [`COLOR_QUERY`], written
 /// with colons or semicolons.
 fn echoes_truecolor_sgr(text: &str) -> bool {
     text.strip_prefix("1$r")
         .is_some_and(|sgr| sgr.contains("48:2:1:2:3") || sgr.contains("48;2;1;2;3"))
 }
 
-/// The colour depth to use when no `--color` was given: what `COLORTERM` states, else what the
-/// terminal answers, else 256 colours. Asks only when standard input and output are a terminal;
-/// raw mode is on while it waits and back as it was afterwards.
-pub fn detect() -> ColorMode {
-    if let Some(mode) = from_env(std::env::var("COLORTERM").ok().as_deref()) {
-        return mode;
+/// What the editor starts with: the colour depth and the way to draw the preview.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Startup {
+    pub color: ColorMode,
+    pub graphics: Graphics,
+}
+
+/// Decides the colour depth (`color` when given, else what `COLORTERM` states, else what the
+/// terminal answers, else 256 colours) and the graphics for `request`. Asks the terminal only
+/// when something is left to decide and standard input and output are a terminal; raw mode is
+/// on while it waits and back as it was afterwards.
+pub fn detect(color: Option<ColorMode>, request: GraphicsRequest) -> Startup {
+    let color = color.or_else(|| from_env(std::env::var("COLORTERM").ok().as_deref()));
+    let var = |name: &str| std::env::var(name).unwrap_or_default();
+    let in_tmux = std::env::var_os("TMUX").is_some();
+    let tmux_passthrough = in_tmux.then(tmux_allows_passthrough).flatten();
+    let mut facts = Facts {
+        term: var("TERM"),
+        term_program: var("TERM_PROGRAM"),
+        kitty_window: std::env::var_os("KITTY_WINDOW_ID").is_some(),
+        in_tmux,
+        tmux_passthrough,
+        tmux_pane: if in_tmux { tmux_pane() } else { (0, 0) },
+        winsize: window_size()
+            .ok()
+            .map(|w| (w.columns, w.rows, w.width, w.height)),
+        replies: Vec::new(),
+    };
+    let questions = color.is_none() || request != GraphicsRequest::HalfBlock;
+    if questions && io::stdin().is_terminal() && io::stdout().is_terminal() {
+        // A terminal that says it has pixels is given longer to answer: one just opened may
+        // still be starting up (kitty takes about a second on a loaded machine).
+        let timeout = if facts.hints_pixels() || tmux_passthrough == Some(true) {
+            HINTED_TIMEOUT
+        } else {
+            TIMEOUT
+        };
+        facts.replies = ask_raw(&query(tmux_passthrough == Some(true)), timeout);
     }
-    if !io::stdin().is_terminal() || !io::stdout().is_terminal() {
-        return ColorMode::Ansi256;
+    Startup {
+        color: color.unwrap_or_else(|| decide(&facts.replies)),
+        graphics: graphics::choose(request, &facts),
     }
+}
+
+/// tmux's `allow-passthrough` for this pane: `on` or `all` allow it. `None` when tmux cannot be
+/// asked.
+fn tmux_allows_passthrough() -> Option<bool> {
+    let out = std::process::Command::new("tmux")
+        .args(["show", "-Apv", "allow-passthrough"])
+        .output()
+        .ok()?;
+    let value = String::from_utf8_lossy(&out.stdout);
+    out.status
+        .success()
+        .then(|| matches!(value.trim(), "on" | "all"))
+}
+
+/// The current tmux pane's offset in the outer terminal, (0, 0) when tmux cannot say.
+fn tmux_pane() -> (u16, u16) {
+    let out = std::process::Command::new("tmux")
+        .args(["display", "-p", "#{pane_left},#{pane_top}"])
+        .output();
+    let text = out
+        .ok()
+        .map(|o| String::from_utf8_lossy(&o.stdout).into_owned())
+        .unwrap_or_default();
+    let mut numbers = text.trim().split(',').map(|n| n.parse().unwrap_or(0));
+    (numbers.next().unwrap_or(0), numbers.next().unwrap_or(0))
+}
+
+/// Writes `query` with raw mode on and collects the replies for at most `timeout` (see
+/// [`ask`]).
+fn ask_raw(query: &[u8], timeout: Duration) -> Vec<Reply> {
     let was_raw = is_raw_mode_enabled().unwrap_or(false);
     if !was_raw && enable_raw_mode().is_err() {
-        return ColorMode::Ansi256;
+        return Vec::new();
     }
-    let replies = ask(TIMEOUT).unwrap_or_default();
+    let replies = ask(query, timeout).unwrap_or_default();
     if !was_raw {
         let _ = disable_raw_mode();
     }
-    decide(&replies)
+    replies
 }
 
-/// Writes [`QUERY`] and collects the replies until DA1 arrives or `timeout` passes.
-fn ask(timeout: Duration) -> io::Result<Vec<Reply>> {
+/// Writes `query` and collects the replies until DA1 arrives or `timeout` passes.
+fn ask(query: &[u8], timeout: Duration) -> io::Result<Vec<Reply>> {
     let mut out = io::stdout();
-    out.write_all(QUERY)?;
+    out.write_all(query)?;
     out.flush()?;
     let stdin = io::stdin();
     let fd = stdin.as_fd();

@@ -15,6 +15,8 @@ pub mod document;
 pub mod error;
 pub mod export_job;
 pub mod fields;
+pub mod graphics;
+pub mod image_layer;
 pub mod input;
 pub mod keys;
 pub mod mode;
@@ -69,14 +71,20 @@ enum Event {
 /// Runs the editor on the scene at `scene_path` (the built-in scene when `None`) until the user
 /// quits or the process receives SIGTERM, SIGHUP or SIGINT. Unsaved edits are kept in the
 /// recovery file meanwhile, and written there at once when a signal or an error ends the editor.
-pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<Exit, TuiError> {
+/// The preview is drawn as `startup` says (see [`color_probe::detect`]).
+pub fn run(scene_path: Option<PathBuf>, startup: color_probe::Startup) -> Result<Exit, TuiError> {
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
     let mut app = load(scene_path.as_deref())?
-        .with_color(color)
-        .with_plain_interface(no_color);
+        .with_color(startup.color)
+        .with_plain_interface(no_color)
+        .with_graphics(startup.graphics.clone());
+    if let Some(why) = &startup.graphics.why {
+        app.info(format!("half blocks: {why}"));
+    }
     if let Some(notice) = recovery::notice(scene_path.as_deref()) {
         app.info(notice);
     }
+    let mut images = image_layer::ImageLayer::new(startup.graphics);
     let signals = Signals::watch().map_err(TuiError::Signals)?;
     let mut autosave = Autosave::start().map_err(TuiError::Autosave)?;
     let (tx, rx) = channel();
@@ -93,6 +101,7 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<Exit, TuiErr
         let _ = tx.send(Event::Render(reply));
     });
     let mut guard = TerminalGuard::enter().map_err(TuiError::TerminalSetup)?;
+    terminal::clean_up_with(images.cleanup());
     let mut state = Loop {
         worker,
         sent: None,
@@ -100,6 +109,7 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<Exit, TuiErr
         scene: (u64::MAX, Arc::new(app.doc.scene().clone())),
         latency: LatencyLog::from_env(),
         pending: None,
+        motion_frames: false,
     };
     let mut redraw = true;
     let mut pacer = pacer::Pacer::new();
@@ -108,20 +118,28 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<Exit, TuiErr
             Ok(size) => size,
             Err(e) => break Err(TuiError::Terminal(e)),
         };
+        if app.quit {
+            break Ok(Exit::Quit);
+        }
         let areas = view::layout(Rect::new(0, 0, size.width, size.height), &app);
-        state.request(&app, areas.map(|a| a.picture));
         let now = Instant::now();
+        // Real pixels once keys pause; frames rendered while they arrive are half blocks.
+        let pixels = !pacer.moving(now);
+        state.request(&app, areas.map(|a| a.picture), pixels);
         // At most one frame in flight: the next waits for the terminal's answer to the last.
         if (redraw || pacer.needs_exact(now)) && pacer.may_draw(now) {
             let started = Instant::now();
             let cheap = app.present_previews(pacer.moving(now) && pacer.should_ask());
-            if let Err(e) = guard.draw(|f| f.render_widget(&app, f.area())) {
+            let pictures = areas.map_or_else(Vec::new, |a| view::placements(&app, a.picture));
+            let picture_bytes = images.frame(&pictures);
+            if let Err(e) = guard.draw(|f| f.render_widget(&app, f.area()), &picture_bytes) {
                 break Err(TuiError::Terminal(e));
             }
             if pacer.should_ask() {
                 if let Err(e) = guard.ask(pacer::QUERY) {
                     break Err(TuiError::Terminal(e));
                 }
+                pacer.carrying(picture_bytes.len());
                 pacer.asked(now, cheap);
             } else {
                 pacer.drew(cheap);
@@ -129,10 +147,11 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<Exit, TuiErr
             state.drawn(started);
             redraw = false;
         }
-        if app.quit {
-            break Ok(Exit::Quit);
-        }
-        let wait = pacer.wake_at().map_or(TICK, |at| {
+        // Frames rendered in half blocks while keys arrived are rendered again in pixels once
+        // the keys pause.
+        let settle = state.motion_frames.then(|| pacer.settles_at()).flatten();
+        let wake = [pacer.wake_at(), settle].into_iter().flatten().min();
+        let wait = wake.map_or(TICK, |at| {
             at.saturating_duration_since(Instant::now()).min(TICK)
         });
         let first = match rx.recv_timeout(wait) {
@@ -159,6 +178,9 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<Exit, TuiErr
             let action = match event {
                 Event::Reply(_) => None,
                 Event::Input(ev) => {
+                    if let TermEvent::Resize(..) = ev {
+                        images.invalidate();
+                    }
                     if matches!(ev, TermEvent::Key(_) | TermEvent::Mouse(_)) {
                         pacer.input(Instant::now());
                     }
@@ -195,6 +217,19 @@ pub fn run(scene_path: Option<PathBuf>, color: ColorMode) -> Result<Exit, TuiErr
             break Ok(Exit::Signal(signal));
         }
     };
+    // An answer to a query still on its way would reach the shell as typed text: wait a little
+    // for it while the editor still reads its input.
+    let until = Instant::now() + pacer::LAST_ANSWER;
+    while pacer.awaiting() {
+        let left = until.saturating_duration_since(Instant::now());
+        match rx.recv_timeout(left) {
+            Ok(Event::Reply(term_input::Reply::CursorPosition { .. })) => {
+                pacer.answered(Instant::now())
+            }
+            Ok(_) => {}
+            Err(_) => break,
+        }
+    }
     // Edits reach the disk before the terminal is touched: it may be gone.
     let recovered = match ended {
         Ok(Exit::Quit) => autosave.quit().map(|()| None),
@@ -242,14 +277,22 @@ fn load(path: Option<&Path>) -> Result<App, TuiError> {
     })
 }
 
-/// The render jobs the app needs for a picture area of `picture`.
-pub fn wanted(app: &App, picture: Rect) -> Option<Wanted> {
+/// The render jobs the app needs for a picture area of `picture`: in real pixels when `pixels`
+/// and the editor draws with a graphics protocol and no dialog covers the preview, else one
+/// pixel per column and two per row for half blocks.
+pub fn wanted(app: &App, picture: Rect, pixels: bool) -> Option<Wanted> {
+    let pixels = pixels && matches!(app.mode, mode::Mode::Normal | mode::Mode::Edit(_));
     let job = |slot, algorithm, area: Rect| {
+        let half_blocks = (area.width as u32, 2 * area.height as u32);
+        let (width, height) = pixels
+            .then(|| app.view.graphics().pixel_size(area.width, area.height))
+            .flatten()
+            .unwrap_or(half_blocks);
         (area.width > 0 && area.height > 0).then_some(Job {
             slot,
             algorithm,
-            width: area.width as u32,
-            height: 2 * area.height as u32,
+            width,
+            height,
         })
     };
     let jobs: Vec<Job> = if app.view.compare() {
@@ -281,6 +324,9 @@ struct Loop {
     latency: Option<LatencyLog>,
     /// The request whose frame is awaited, for the latency log.
     pending: Option<Pending>,
+    /// Whether the last request was for half blocks where the editor draws real pixels, since
+    /// keys were arriving: rendered again in pixels once they pause.
+    motion_frames: bool,
 }
 
 /// A request caused by a key, waiting to be drawn.
@@ -293,8 +339,9 @@ struct Pending {
 
 impl Loop {
     /// Sends a render request when the wanted preview changed.
-    fn request(&mut self, app: &App, picture: Option<Rect>) {
-        let wanted = picture.and_then(|p| wanted(app, p));
+    fn request(&mut self, app: &App, picture: Option<Rect>, pixels: bool) {
+        self.motion_frames = app.view.graphics().protocol.is_some() && !pixels;
+        let wanted = picture.and_then(|p| wanted(app, p, pixels));
         let key_at = self.latency.as_mut().and_then(|l| l.key_at.take());
         let Some(wanted) = wanted.filter(|w| self.sent.as_ref() != Some(w)) else {
             return;

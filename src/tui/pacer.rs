@@ -19,8 +19,17 @@ pub const QUERY: &[u8] = b"\x1b[6n";
 /// Input pause after which the exact frame replaces the cheap ones drawn while keys arrive.
 pub const SETTLE: Duration = Duration::from_millis(150);
 
+/// How long the editor waits, when it quits, for answers still on their way (which would
+/// otherwise reach the shell as typed text).
+pub const LAST_ANSWER: Duration = Duration::from_millis(300);
+
 /// How long the first answer is awaited before the terminal is taken to answer nothing.
 const FIRST_ANSWER: Duration = Duration::from_millis(1500);
+
+/// The slowest link the editor expects, bytes per second: a large frame (a picture in real
+/// pixels) adds its bytes at this rate to the time its answer is awaited, so that a picture
+/// crossing a slow link is not taken for a terminal that does not answer.
+const SLOWEST_LINK: f64 = 16_000.0;
 
 /// How long a later answer is awaited before drawing anyway (an answer lost to a reset, or a
 /// link stalled for longer than this): the editor never freezes for good.
@@ -49,6 +58,8 @@ pub struct Pacer {
     last_input: Option<Instant>,
     /// Whether the frame on screen (or in flight) is a cheap one that the exact frame must replace.
     lossy_shown: bool,
+    /// Extra time the answers in flight are awaited, for the large frames before them.
+    patience: Duration,
 }
 
 impl Default for Pacer {
@@ -66,6 +77,7 @@ impl Pacer {
             asked_at: None,
             last_input: None,
             lossy_shown: false,
+            patience: Duration::ZERO,
         }
     }
 
@@ -93,7 +105,7 @@ impl Pacer {
             Answering::Unknown => FIRST_ANSWER,
             Answering::Yes => LATER_ANSWER,
         };
-        if now.duration_since(asked) < limit {
+        if now.duration_since(asked) < limit + self.patience {
             return false;
         }
         if self.answering == Answering::Unknown {
@@ -102,7 +114,13 @@ impl Pacer {
         // Give up on what is in flight; late answers are then ignored.
         self.in_flight = 0;
         self.asked_at = None;
+        self.patience = Duration::ZERO;
         true
+    }
+
+    /// Whether a query is on its way to a terminal that answers.
+    pub fn awaiting(&self) -> bool {
+        self.in_flight > 0 && self.answering != Answering::No
     }
 
     /// Whether a query should follow the frame just written.
@@ -116,6 +134,12 @@ impl Pacer {
         self.in_flight += 1;
         self.asked_at.get_or_insert(now);
         self.lossy_shown = lossy;
+    }
+
+    /// Notes that the frame about to be asked after carries `bytes` more than its cells (a
+    /// picture): its answer is awaited longer, as if the link carried 16 kB/s.
+    pub fn carrying(&mut self, bytes: usize) {
+        self.patience += Duration::from_secs_f64(bytes as f64 / SLOWEST_LINK);
     }
 
     /// Notes a frame written without a query (the terminal does not answer).
@@ -132,6 +156,9 @@ impl Pacer {
         self.answering = Answering::Yes;
         self.in_flight -= 1;
         self.asked_at = (self.in_flight > 0).then_some(now);
+        if self.in_flight == 0 {
+            self.patience = Duration::ZERO;
+        }
     }
 
     /// Notes a key or mouse event at `now`.
@@ -143,6 +170,14 @@ impl Pacer {
     pub fn moving(&self, now: Instant) -> bool {
         self.last_input
             .is_some_and(|at| now.duration_since(at) < SETTLE)
+    }
+
+    /// When input counts as paused (the end of [`SETTLE`] after the last key), while that is
+    /// still to come.
+    pub fn settles_at(&self) -> Option<Instant> {
+        self.last_input
+            .map(|at| at + SETTLE)
+            .filter(|&at| at > Instant::now())
     }
 
     /// Whether the screen shows a cheap frame that the exact one must replace once input settles.
@@ -158,10 +193,11 @@ impl Pacer {
             .then_some(self.last_input.map(|at| at + SETTLE))
             .flatten();
         let timeout = self.asked_at.map(|at| {
-            at + match self.answering {
-                Answering::Yes => LATER_ANSWER,
-                _ => FIRST_ANSWER,
-            }
+            at + self.patience
+                + match self.answering {
+                    Answering::Yes => LATER_ANSWER,
+                    _ => FIRST_ANSWER,
+                }
         });
         match (settle, timeout) {
             (Some(a), Some(b)) => Some(a.min(b)),
@@ -234,5 +270,21 @@ mod tests {
         assert!(p.needs_exact(t + SETTLE));
         p.asked(t + SETTLE, false);
         assert!(!p.needs_exact(t + SETTLE + ms(1)));
+    }
+
+    #[test]
+    fn a_large_picture_is_awaited_longer() {
+        let t = Instant::now();
+        let mut p = Pacer::new();
+        // 160 kB at the slowest link's 16 kB/s: 10 s more.
+        p.carrying(160_000);
+        p.asked(t, false);
+        assert!(!p.may_draw(t + FIRST_ANSWER + ms(9_000)));
+        assert_eq!(p.answering(), Answering::Unknown);
+        p.answered(t + FIRST_ANSWER + ms(9_500));
+        assert_eq!(p.answering(), Answering::Yes);
+        // The next frame, with no picture, gets the usual patience.
+        p.asked(t + ms(12_000), false);
+        assert!(p.may_draw(t + ms(12_000) + LATER_ANSWER));
     }
 }

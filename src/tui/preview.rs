@@ -17,12 +17,6 @@ pub enum ColorMode {
 }
 
 impl ColorMode {
-    /// Truecolor when `COLORTERM` says so or the terminal answers that it has it, the
-    /// 256-colour palette otherwise (see [`super::color_probe`]).
-    pub fn detect() -> ColorMode {
-        super::color_probe::detect()
-    }
-
     /// The terminal colour for an 8-bit sRGB triple.
     pub fn color(self, [r, g, b]: [u8; 3]) -> Color {
         match self {

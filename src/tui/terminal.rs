@@ -6,6 +6,7 @@ use std::cell::Cell;
 use std::fmt;
 use std::io::{self, Stdout, Write};
 use std::rc::Rc;
+use std::sync::Mutex;
 
 use super::compact_backend::CompactBackend;
 use ratatui::Frame;
@@ -129,20 +130,40 @@ impl TerminalGuard {
         out.flush()
     }
 
-    /// Draws one frame inside a synchronized update.
-    pub fn draw(&mut self, render: impl FnOnce(&mut Frame)) -> io::Result<()> {
+    /// Draws one frame inside a synchronized update, then `pictures` (the bytes that draw
+    /// pictures in real pixels over the cells, see `tui::image_layer`) inside the same update.
+    pub fn draw(&mut self, render: impl FnOnce(&mut Frame), pictures: &[u8]) -> io::Result<()> {
         execute!(self.terminal.backend_mut(), BeginSynchronizedUpdate)?;
-        let result = self.terminal.draw(render).map(drop);
+        let mut result = self.terminal.draw(render).map(drop);
+        if result.is_ok() && !pictures.is_empty() {
+            // The next frame places its first cell itself, wherever a picture left the cursor.
+            result = self.terminal.backend_mut().write_all(pictures);
+        }
         execute!(self.terminal.backend_mut(), EndSynchronizedUpdate)?;
         result
     }
 }
 
-/// Puts the terminal back as the shell had it. Safe to call more than once; errors (a terminal
-/// that has gone away) are ignored.
+/// What takes the editor's pictures off the screen before it leaves (see
+/// `tui::image_layer::ImageLayer::cleanup`); written on every way out, the panic hook included.
+static CLEAN_UP: Mutex<Vec<u8>> = Mutex::new(Vec::new());
+
+/// Sets what [`restore`] writes before leaving the alternate screen to take pictures off it.
+pub fn clean_up_with(bytes: Vec<u8>) {
+    if let Ok(mut clean_up) = CLEAN_UP.lock() {
+        *clean_up = bytes;
+    }
+}
+
+/// Puts the terminal back as the shell had it, pictures taken off the screen first. Safe to
+/// call more than once; errors (a terminal that has gone away) are ignored.
 pub fn restore() {
     let _ = disable_raw_mode();
-    let _ = write_leave(&mut io::stdout());
+    let mut out = io::stdout();
+    if let Ok(clean_up) = CLEAN_UP.try_lock() {
+        let _ = out.write_all(&clean_up);
+    }
+    let _ = write_leave(&mut out);
 }
 
 impl Drop for TerminalGuard {

@@ -10,6 +10,14 @@ pub const TERMINAL_DEFAULT: Color = Color::Reset;
 
 /// Text with no style of its own.
 pub const PLAIN: Style = Style::new();
+/// Cells under a picture in real pixels: blank on the terminal's background. Their foreground,
+/// which a blank cell never shows and which costs no byte, is one no other blank cell has, so
+/// that whatever replaces them (a dialog's blank cells included) counts as a change and is
+/// written, wiping a sixel or iTerm2 picture from those cells.
+pub const PICTURE_UNDER: Style = Style::new()
+    .fg(Color::Indexed(16))
+    .bg(TERMINAL_DEFAULT)
+    .remove_modifier(Modifier::all());
 /// Hints, separators, placeholders, an unfocused pane's border, the help's context column.
 pub const DIM: Style = Style::new().fg(Color::DarkGray);
 /// Property labels and inactive dialog fields.

@@ -2,6 +2,7 @@
 //! Looking around is not editing: moving the view never touches the document. The view starts
 //! from the scene's camera, and `C` copies it back into the scene as an edit.
 
+use super::graphics::Graphics;
 use super::orbit;
 use super::preview::ColorMode;
 use crate::render::Algorithm;
@@ -22,6 +23,8 @@ pub struct ViewState {
     show_timings: bool,
     /// Whether the interface is drawn without colours (`NO_COLOR`); the preview keeps its own.
     plain: bool,
+    /// Half blocks, or real pixels over a graphics protocol.
+    graphics: Graphics,
 }
 
 impl ViewState {
@@ -34,6 +37,7 @@ impl ViewState {
             color: ColorMode::Truecolor,
             show_timings: true,
             plain: false,
+            graphics: Graphics::default(),
         }
     }
 
@@ -125,5 +129,15 @@ impl ViewState {
     /// Shows or hides render times.
     pub fn set_show_timings(&mut self, show: bool) {
         self.show_timings = show;
+    }
+
+    /// How the preview reaches the screen: half blocks or a graphics protocol.
+    pub fn graphics(&self) -> &Graphics {
+        &self.graphics
+    }
+
+    /// Draws the preview with `graphics`.
+    pub fn set_graphics(&mut self, graphics: Graphics) {
+        self.graphics = graphics;
     }
 }

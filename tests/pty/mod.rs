@@ -3,6 +3,8 @@
 //! hanging up closes the master. The editor leads its own session with the pty as its
 //! controlling terminal (util-linux `setsid --ctty`), so a hang-up sends it SIGHUP.
 
+#![allow(dead_code)]
+
 use std::num::NonZeroU16;
 use std::os::fd::OwnedFd;
 use std::path::Path;
@@ -34,6 +36,17 @@ pub struct Editor {
 impl Editor {
     /// Starts `rastray ARGS` in `dir`.
     pub fn start(dir: &Path, args: &[&str]) -> Editor {
+        let size = Winsize {
+            ws_row: ROWS.get(),
+            ws_col: COLUMNS.get(),
+            ws_xpixel: 0,
+            ws_ypixel: 0,
+        };
+        Editor::start_sized(dir, args, size)
+    }
+
+    /// Starts `rastray ARGS` in `dir` on a pty of `size` (cells, and pixels when not 0).
+    pub fn start_sized(dir: &Path, args: &[&str], size: Winsize) -> Editor {
         let master = openpt(OpenptFlags::RDWR | OpenptFlags::NOCTTY | OpenptFlags::CLOEXEC)
             .expect("open a pty");
         grantpt(&master).expect("grantpt");
@@ -45,12 +58,6 @@ impl Editor {
             Mode::empty(),
         )
         .expect("open the pty's terminal side");
-        let size = Winsize {
-            ws_row: ROWS.get(),
-            ws_col: COLUMNS.get(),
-            ws_xpixel: 0,
-            ws_ypixel: 0,
-        };
         tcsetwinsize(&slave, size).expect("set the pty's size");
         // Descriptors are close-on-exec: a hang-up must close the last copy of the master.
         rustix::fs::fcntl_setfl(&master, OFlags::NONBLOCK).expect("non-blocking master");
@@ -68,7 +75,11 @@ impl Editor {
         Editor {
             child,
             master: Some(master),
-            screen: vt100::Parser::new(ROWS, COLUMNS, 0),
+            screen: vt100::Parser::new(
+                NonZeroU16::new(size.ws_row).unwrap_or(ROWS),
+                NonZeroU16::new(size.ws_col).unwrap_or(COLUMNS),
+                0,
+            ),
             output: Vec::new(),
         }
     }
@@ -124,6 +135,18 @@ impl Editor {
             assert!(
                 start.elapsed() < TIMEOUT,
                 "`{needle}` did not appear within {TIMEOUT:?}; the screen was:\n{text}"
+            );
+        }
+    }
+
+    /// Reads until everything the editor wrote satisfies `done`; panics on timeout.
+    pub fn read_until(&mut self, done: impl Fn(&[u8]) -> bool) {
+        let start = Instant::now();
+        while !done(&self.output) {
+            self.pump(Duration::from_millis(50));
+            assert!(
+                start.elapsed() < TIMEOUT,
+                "the editor's output did not arrive within {TIMEOUT:?}"
             );
         }
     }

@@ -8,7 +8,7 @@ mod properties;
 mod scene_list;
 mod status;
 
-pub use picture::Picture;
+pub use picture::{Picture, placements};
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Constraint, Layout, Rect};

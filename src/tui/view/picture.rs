@@ -1,4 +1,5 @@
-//! The preview pane: the rendered image as half blocks, or the three algorithms side by side.
+//! The preview pane: the rendered image as half blocks or as a picture in real pixels (drawn by
+//! `tui::image_layer` over blank cells), or the three algorithms side by side.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Alignment, Rect};
@@ -6,7 +7,9 @@ use ratatui::text::Line;
 use ratatui::widgets::{Paragraph, Widget};
 
 use super::{compare_panes, millis, pane};
-use crate::tui::app::App;
+use crate::tui::app::{App, Shot};
+use crate::tui::image_layer::Placement;
+use crate::tui::mode::Mode;
 use crate::tui::motion::CoarseMask;
 use crate::tui::preview::{ColorMode, PreviewImage, half_block_each};
 use crate::tui::selection::Focus;
@@ -21,11 +24,24 @@ pub struct Picture<'a> {
 }
 
 impl Widget for Picture<'_> {
+    /// Draws the image at one pixel per column and two per row; an image of another size (one
+    /// rendered for real pixels, shown while a dialog is open) is sampled to that grid.
     fn render(self, area: Rect, buf: &mut Buffer) {
+        let (grid_w, grid_h) = (u32::from(area.width), 2 * u32::from(area.height));
+        let scaled = self.image.width > grid_w || self.image.height > grid_h;
+        let sample = |v: u32, grid: u32, size: u32| match scaled {
+            true => {
+                ((u64::from(v) * u64::from(size) + u64::from(size) / 2) / u64::from(grid.max(1)))
+                    as u32
+            }
+            false => v,
+        };
         for row in 0..area.height {
             for col in 0..area.width {
                 let (x, y) = (col as u32, 2 * row as u32);
                 let pixel = |x: u32, y: u32| {
+                    let x = sample(x, grid_w, self.image.width);
+                    let y = sample(y, grid_h, self.image.height);
                     let rgb = self.image.pixel(x, y)?;
                     let index = (y * self.image.width + x) as usize;
                     let coarse = self.coarse.as_ref().is_some_and(|m| m[index]);
@@ -44,6 +60,61 @@ impl Widget for Picture<'_> {
                 }
             }
         }
+    }
+}
+
+/// Whether `shot`, shown over `area`, is a picture in real pixels: the editor draws with a
+/// graphics protocol, the image has the size rendered for that area (frames rendered in half-block
+/// size while keys arrive stay half blocks), and no dialog or help is open over the preview.
+fn shows_pixels(app: &App, area: Rect, shot: &Shot) -> bool {
+    let size = app.view.graphics().pixel_size(area.width, area.height);
+    size == Some((shot.image.width, shot.image.height))
+        && matches!(app.mode, Mode::Normal | Mode::Edit(_))
+}
+
+/// The pictures the preview shows in real pixels when the panes are laid out with the picture
+/// area `picture`: slot 0 the single preview, 1..=3 the compare panes.
+pub fn placements(app: &App, picture: Rect) -> Vec<Placement<'_>> {
+    let shots: Vec<(Rect, Option<&Shot>)> = if app.view.compare() {
+        compare_panes(picture)
+            .into_iter()
+            .zip(&app.previews.compare)
+            .map(|((_, _, image), shot)| (image, shot.as_ref()))
+            .collect()
+    } else {
+        vec![(picture, app.previews.shot.as_ref())]
+    };
+    let offset = usize::from(app.view.compare());
+    shots
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, (area, shot))| {
+            let shot = shot.filter(|s| shows_pixels(app, area, s))?;
+            Some(Placement {
+                slot: i + offset,
+                area,
+                image: &shot.image,
+            })
+        })
+        .collect()
+}
+
+/// A shot drawn over `area`: half blocks, or blank cells under a picture in real pixels.
+fn draw_shot(app: &App, shot: &Shot, area: Rect, buf: &mut Buffer) {
+    if shows_pixels(app, area, shot) {
+        buf.set_style(area, theme::PICTURE_UNDER);
+        for position in area.positions() {
+            if let Some(c) = buf.cell_mut(position) {
+                c.set_symbol(" ");
+            }
+        }
+    } else {
+        Picture {
+            image: &shot.image,
+            mode: app.view.color(),
+            coarse: &shot.coarse,
+        }
+        .render(area, buf);
     }
 }
 
@@ -78,21 +149,11 @@ impl Widget for PreviewPane<'_> {
                     .style(theme::HEADING)
                     .render(label, buf);
                 if let Some(s) = shot {
-                    Picture {
-                        image: &s.image,
-                        mode: view.color(),
-                        coarse: &s.coarse,
-                    }
-                    .render(image, buf);
+                    draw_shot(app, s, image, buf);
                 }
             }
         } else if let Some(shot) = &app.previews.shot {
-            Picture {
-                image: &shot.image,
-                mode: view.color(),
-                coarse: &shot.coarse,
-            }
-            .render(inner, buf);
+            draw_shot(app, shot, inner, buf);
         } else {
             Paragraph::new(Line::styled("rendering…", theme::DIM))
                 .alignment(Alignment::Center)

@@ -12,6 +12,12 @@ use crate::tui::mode::Mode;
 use crate::tui::selection::Focus;
 use crate::tui::theme;
 
+/// Columns a label takes where there is room, before the space that separates it from its value.
+const LABEL_COLUMNS: usize = 15;
+
+/// Most columns the labels make room for: a number such as `-12.375`.
+const VALUE_ROOM: usize = 8;
+
 /// Label and value of every property of the selected item.
 pub struct Properties<'a>(pub &'a App);
 
@@ -23,14 +29,21 @@ impl Widget for Properties<'_> {
             pane("Properties", focused).render(area, buf);
             return;
         };
-        // Labels take up to 16 columns, leaving at least 6 for the value in a narrow pane.
-        let width = 16.min(area.width.saturating_sub(9) as usize);
-        let items: Vec<ListItem> = part
-            .keys()
+        let keys = part.keys();
+        let values: Vec<String> = keys
+            .iter()
+            .map(|&key| part.value(key).map(|v| v.to_string()).unwrap_or_default())
+            .collect();
+        let width = label_width(area.width, values.iter().map(|v| v.chars().count()));
+        let items: Vec<ListItem> = keys
             .into_iter()
+            .zip(values)
             .enumerate()
-            .map(|(i, key)| {
-                let label = Span::styled(format!("{:<width$}", key.label(&part)), theme::LABEL);
+            .map(|(i, (key, value))| {
+                let label = Span::styled(
+                    format!("{:<width$.width$} ", key.label(&part)),
+                    theme::LABEL,
+                );
                 match &app.mode {
                     Mode::Edit(line) if i == app.field() => {
                         let mut lines = vec![Line::from(vec![
@@ -42,10 +55,7 @@ impl Widget for Properties<'_> {
                         }
                         ListItem::new(lines)
                     }
-                    _ => {
-                        let value = part.value(key).map(|v| v.to_string()).unwrap_or_default();
-                        ListItem::new(Line::from(vec![label, Span::raw(value)]))
-                    }
+                    _ => ListItem::new(Line::from(vec![label, Span::raw(value)])),
                 }
             })
             .collect();
@@ -60,5 +70,33 @@ impl Widget for Properties<'_> {
             .highlight_symbol("▶");
         let mut state = ListState::default().with_selected(Some(app.field()));
         StatefulWidget::render(list, area, buf, &mut state);
+    }
+}
+
+/// Columns for the labels in a properties pane `pane_width` wide (borders included): 15 (the
+/// values start in the same column on every item), fewer when the values need the room. Labels give way before
+/// values do: a label is cut short so that the longest value shows whole, as long as a label
+/// keeps 3 columns. Values longer than [`VALUE_ROOM`] (names, paths) are not given more.
+pub fn label_width(pane_width: u16, values: impl Iterator<Item = usize>) -> usize {
+    // Two borders, the highlight symbol, and a space between label and value.
+    let room = usize::from(pane_width).saturating_sub(4);
+    let longest_value = values.max().unwrap_or(0).min(VALUE_ROOM);
+    LABEL_COLUMNS.min(room.saturating_sub(longest_value).max(3))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::label_width;
+
+    #[test]
+    fn labels_give_way_before_values() {
+        // Wide enough for both: the full label column.
+        assert_eq!(label_width(40, [5].into_iter()), 15);
+        // 20 columns leave 16 for label and value: the 5-character value keeps its room.
+        assert_eq!(label_width(20, [5].into_iter()), 11);
+        assert_eq!(label_width(14, [5].into_iter()), 5);
+        // Labels keep 3 columns, and long values (names) are not given more than 8.
+        assert_eq!(label_width(14, [30].into_iter()), 3);
+        assert_eq!(label_width(20, [30].into_iter()), 8);
     }
 }

@@ -1,4 +1,5 @@
-//! The status bar: algorithm, frame time, triangles, preview size, unsaved marker, file, the
+//! The status bar: algorithm, frame time, preview size, triangles, how the preview is drawn
+//! (half blocks, kitty, sixel, iTerm2), unsaved marker, file, the
 //! latest message or the export's progress, and the keys that matter in the current pane.
 
 use ratatui::buffer::Buffer;
@@ -81,6 +82,7 @@ impl Widget for StatusBar<'_> {
         if let Some(t) = app.previews.triangles {
             spans.extend([sep(), Span::raw(format!("{t} tris"))]);
         }
+        spans.extend([sep(), Span::raw(app.view.graphics().label())]);
         spans.push(sep());
         if app.doc.is_dirty() {
             spans.push(Span::styled("● modified ", theme::WARNING));

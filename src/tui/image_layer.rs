@@ -1,0 +1,288 @@
+//! The pictures drawn over the cells in real pixels (kitty, sixel, iTerm2), and what is on the
+//! screen now, so that a picture is sent only when it changed and a kitty image is deleted when
+//! its place goes back to cells.
+//!
+//! The cells under a picture are blank in ratatui's buffer (see `view::picture`), so ratatui
+//! leaves them alone from frame to frame and the picture stays. Anything that rewrites those
+//! cells (an overlay, a motion frame in half blocks, a resize) takes the picture off this layer
+//! first, and it is sent again when it comes back.
+
+use ratatui::layout::Rect;
+
+use super::graphics::Graphics;
+use super::preview::PreviewImage;
+use crate::terminal_image::{CellArea, Protocol, kitty, passthrough};
+
+/// One picture to show: its slot (0 the main preview, 1..=3 the compare panes), its cells, its
+/// image.
+#[derive(Debug, Clone, Copy)]
+pub struct Placement<'a> {
+    pub slot: usize,
+    pub area: Rect,
+    pub image: &'a PreviewImage,
+}
+
+/// A picture on the screen.
+#[derive(Debug, Clone)]
+struct Placed {
+    slot: usize,
+    area: Rect,
+    image: PreviewImage,
+    /// The kitty image id.
+    id: u32,
+}
+
+/// The pictures on the screen and how to draw more.
+#[derive(Debug, Clone, Default)]
+pub struct ImageLayer {
+    graphics: Graphics,
+    placed: Vec<Placed>,
+    next_id: u32,
+    /// Deletions of pictures forgotten by [`ImageLayer::invalidate`], sent with the next frame.
+    deletes: Vec<u8>,
+}
+
+impl ImageLayer {
+    /// A layer drawing with `graphics` (nothing at all for half blocks).
+    pub fn new(graphics: Graphics) -> ImageLayer {
+        ImageLayer {
+            graphics,
+            placed: Vec::new(),
+            next_id: 1,
+            deletes: Vec::new(),
+        }
+    }
+
+    /// The bytes that make the screen show `wanted` after a frame of cells: new or changed
+    /// pictures are sent, kitty images no longer wanted are deleted; pictures already shown
+    /// cost nothing. A picture that cannot be encoded is left out.
+    pub fn frame(&mut self, wanted: &[Placement]) -> Vec<u8> {
+        let Some(protocol) = self.graphics.protocol else {
+            return Vec::new();
+        };
+        let mut out = std::mem::take(&mut self.deletes);
+        let mut kept = Vec::with_capacity(wanted.len());
+        for p in wanted {
+            let same = self
+                .placed
+                .iter()
+                .position(|q| q.slot == p.slot && q.area == p.area && q.image == *p.image);
+            if let Some(i) = same {
+                kept.push(self.placed.swap_remove(i));
+                continue;
+            }
+            let id = self.next_id;
+            self.next_id = self.next_id.wrapping_add(1).max(1);
+            if let Ok(bytes) = self.place(protocol, p, id) {
+                out.extend_from_slice(&bytes);
+                kept.push(Placed {
+                    slot: p.slot,
+                    area: p.area,
+                    image: p.image.clone(),
+                    id,
+                });
+            }
+        }
+        // What is left was replaced or is no longer wanted.
+        if protocol == Protocol::Kitty {
+            for gone in &self.placed {
+                out.extend_from_slice(&self.wrap(&kitty::delete(gone.id)));
+            }
+        }
+        self.placed = kept;
+        out
+    }
+
+    /// Forgets what is on the screen (the terminal was cleared or resized): every picture is
+    /// sent again with the next frame, and kitty images are deleted first.
+    pub fn invalidate(&mut self) {
+        let placed = std::mem::take(&mut self.placed);
+        if self.graphics.protocol == Some(Protocol::Kitty) {
+            for p in placed {
+                let delete = self.wrap(&kitty::delete(p.id));
+                self.deletes.extend_from_slice(&delete);
+            }
+        }
+    }
+
+    /// The bytes that take every picture off the screen before the editor leaves: kitty images
+    /// are deleted; sixel and iTerm2 pictures are cells, cleared with the screen.
+    pub fn cleanup(&self) -> Vec<u8> {
+        match self.graphics.protocol {
+            Some(Protocol::Kitty) => self.wrap(kitty::DELETE_ALL),
+            Some(_) => b"\x1b[2J".to_vec(),
+            None => Vec::new(),
+        }
+    }
+
+    /// The bytes that draw `p` with `protocol` as kitty image `id`: the cursor moved to the
+    /// area's top-left cell, then the picture.
+    fn place(
+        &self,
+        protocol: Protocol,
+        p: &Placement,
+        id: u32,
+    ) -> Result<Vec<u8>, image::ImageError> {
+        let cells = CellArea {
+            cols: u32::from(p.area.width.max(1)),
+            rows: u32::from(p.area.height.max(1)),
+        };
+        // Kitty and iTerm2 stretch the picture over the cells; sixel draws it at its own size,
+        // centred in them when the pixel budget made it smaller.
+        let (at_x, at_y) = match protocol {
+            Protocol::Sixel => {
+                let cell = self.graphics.cell;
+                let spare = |cells: u16, size: u32, pixels: u32| {
+                    ((u32::from(cells) * size).saturating_sub(pixels) / 2 / size.max(1)) as u16
+                };
+                (
+                    p.area.x + spare(p.area.width, cell.width, p.image.width),
+                    p.area.y + spare(p.area.height, cell.height, p.image.height),
+                )
+            }
+            _ => (p.area.x, p.area.y),
+        };
+        let pieces = match protocol {
+            Protocol::Kitty => kitty::encode_pieces(p.image, cells, Some(id))?,
+            other => vec![other.encode(p.image, cells)?],
+        };
+        let mut out = Vec::new();
+        match self.graphics.tmux_pane {
+            None => {
+                out.extend_from_slice(format!("\x1b[{};{}H", at_y + 1, at_x + 1).as_bytes());
+                pieces.iter().for_each(|piece| out.extend_from_slice(piece));
+            }
+            // Passthrough reaches the outer terminal, whose cursor tmux does not move: the
+            // cursor is moved there, in the outer terminal's cells, and put back afterwards.
+            Some((left, top)) => {
+                let at = format!("\x1b7\x1b[{};{}H", top + at_y + 1, left + at_x + 1);
+                out.extend_from_slice(&passthrough::tmux(at.as_bytes()));
+                for piece in &pieces {
+                    out.extend_from_slice(&passthrough::tmux(piece));
+                }
+                out.extend_from_slice(&passthrough::tmux(b"\x1b8"));
+            }
+        }
+        Ok(out)
+    }
+
+    /// `bytes` as the terminal must receive them: through tmux when inside it.
+    fn wrap(&self, bytes: &[u8]) -> Vec<u8> {
+        match self.graphics.tmux_pane {
+            Some(_) => passthrough::tmux(bytes),
+            None => bytes.to_vec(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::terminal_image::CellSize;
+
+    fn kitty_layer() -> ImageLayer {
+        ImageLayer::new(Graphics {
+            protocol: Some(Protocol::Kitty),
+            cell: CellSize::default(),
+            tmux_pane: None,
+            why: None,
+        })
+    }
+
+    fn image(v: u8) -> PreviewImage {
+        PreviewImage {
+            width: 2,
+            height: 2,
+            pixels: vec![[v; 3]; 4],
+        }
+    }
+
+    #[test]
+    fn a_picture_is_sent_once_replaced_when_it_changes_and_deleted_when_gone() {
+        let mut layer = kitty_layer();
+        let area = Rect::new(3, 2, 10, 5);
+        let (a, b) = (image(10), image(200));
+        let first = String::from_utf8(layer.frame(&[Placement {
+            slot: 0,
+            area,
+            image: &a,
+        }]))
+        .unwrap();
+        assert!(
+            first.starts_with("\x1b[3;4H\x1b_Ga=T,f=100,q=2,i=1,C=1,c=10,r=5,"),
+            "{first:?}"
+        );
+        let again = layer.frame(&[Placement {
+            slot: 0,
+            area,
+            image: &a,
+        }]);
+        assert!(again.is_empty(), "an unchanged picture costs nothing");
+        let changed = String::from_utf8(layer.frame(&[Placement {
+            slot: 0,
+            area,
+            image: &b,
+        }]))
+        .unwrap();
+        assert!(changed.contains("i=2,") && changed.ends_with("\x1b_Ga=d,d=I,i=1,q=2\x1b\\"));
+        let gone = layer.frame(&[]);
+        assert_eq!(gone, kitty::delete(2));
+        assert_eq!(layer.cleanup(), kitty::DELETE_ALL);
+    }
+
+    #[test]
+    fn inside_tmux_everything_passes_through_at_the_pane_offset() {
+        let mut layer = ImageLayer::new(Graphics {
+            tmux_pane: Some((40, 1)),
+            ..kitty_layer().graphics
+        });
+        let a = image(10);
+        let bytes = layer.frame(&[Placement {
+            slot: 0,
+            area: Rect::new(3, 2, 10, 5),
+            image: &a,
+        }]);
+        let text = String::from_utf8(bytes).unwrap();
+        assert!(
+            text.starts_with("\x1bPtmux;\x1b\x1b7\x1b\x1b[4;44H\x1b\\"),
+            "{text:?}"
+        );
+        assert!(text.contains("\x1bPtmux;\x1b\x1b_Ga=T"), "{text:?}");
+        assert!(text.ends_with("\x1bPtmux;\x1b\x1b8\x1b\\"), "{text:?}");
+    }
+
+    #[test]
+    fn a_sixel_smaller_than_its_cells_is_centred_in_them() {
+        let mut layer = ImageLayer::new(Graphics {
+            protocol: Some(Protocol::Sixel),
+            ..kitty_layer().graphics
+        });
+        // 10×5 cells of 10×20 pixels are 100×100 pixels; the picture is 50×60.
+        let small = PreviewImage {
+            width: 50,
+            height: 60,
+            pixels: vec![[9; 3]; 3000],
+        };
+        let bytes = layer.frame(&[Placement {
+            slot: 0,
+            area: Rect::new(4, 3, 10, 5),
+            image: &small,
+        }]);
+        // 25 pixels spare on the left are 2 whole cells; 20 above are 1.
+        assert!(bytes.starts_with(b"\x1b[5;7H\x1bP"), "{:?}", &bytes[..12]);
+        assert_eq!(layer.cleanup(), b"\x1b[2J");
+    }
+
+    #[test]
+    fn half_blocks_draw_no_picture() {
+        let mut layer = ImageLayer::new(Graphics::default());
+        let a = image(1);
+        let wanted = [Placement {
+            slot: 0,
+            area: Rect::new(0, 0, 2, 1),
+            image: &a,
+        }];
+        assert!(layer.frame(&wanted).is_empty());
+        assert!(layer.cleanup().is_empty());
+    }
+}
