@@ -12,6 +12,7 @@ use super::half_line::Ray;
 use super::intersect::segment_meets_sphere;
 use super::packet::{PacketHits, RayPacket};
 use crate::mesh::Sphere;
+use crate::render::progress::{Cancelled, Progress};
 use crate::render::simd::{F32x8, V3};
 use crate::world::World;
 
@@ -56,8 +57,10 @@ pub struct SceneAccel {
 }
 
 impl SceneAccel {
-    /// Builds every object's BVH (objects and large meshes in parallel).
-    pub fn build(world: &World) -> SceneAccel {
+    /// Builds every object's BVH (objects and large meshes in parallel); stops with
+    /// [`Cancelled`] soon after `progress` is cancelled, so a scene edited again during a long
+    /// build does not wait for it.
+    pub fn build(world: &World, progress: &Progress) -> Result<SceneAccel, Cancelled> {
         let started = Instant::now();
         let radius = world
             .bounds()
@@ -66,19 +69,21 @@ impl SceneAccel {
         let objects = world
             .objects
             .par_iter()
-            .map(|o| ObjectAccel {
-                bounds: Sphere {
-                    center: o.bounds.center,
-                    radius: o.bounds.radius + epsilon,
-                },
-                bvh: Bvh::build(&o.mesh),
+            .map(|o| {
+                Ok(ObjectAccel {
+                    bounds: Sphere {
+                        center: o.bounds.center,
+                        radius: o.bounds.radius + epsilon,
+                    },
+                    bvh: Bvh::build_cancellable(&o.mesh, progress)?,
+                })
             })
-            .collect();
-        SceneAccel {
+            .collect::<Result<_, Cancelled>>()?;
+        Ok(SceneAccel {
             objects,
             epsilon,
             build_time: started.elapsed(),
-        }
+        })
     }
 
     /// The nearest hit with t in (t_min, t_max) over all objects.
