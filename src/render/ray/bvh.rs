@@ -7,6 +7,7 @@
 //! child first and skips any node that starts beyond the nearest hit found so far.
 
 use glam::{Vec3, Vec3A, Vec4};
+use rayon::prelude::*;
 
 use super::bvh_build;
 use super::half_line::Ray;
@@ -158,8 +159,9 @@ impl Bvh {
             }
         };
         let inner = flat
-            .iter()
+            .par_iter()
             .enumerate()
+            .with_min_len(4096)
             .filter(|(_, n)| !n.is_leaf())
             .map(|(i, n)| Inner {
                 children: [link(i + 1), link(i + n.start() as usize)],

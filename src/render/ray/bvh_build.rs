@@ -335,7 +335,11 @@ pub fn build(mesh: &Mesh, progress: &Progress) -> Result<Bvh, Cancelled> {
             Triangle::new(a, b, c)
         })
         .collect();
-    let ids = prims.iter().map(Prim::index).collect();
+    let ids = prims
+        .par_iter()
+        .with_min_len(4096)
+        .map(Prim::index)
+        .collect();
     let (root, inner) = Bvh::pack(&nodes);
     let mut bvh = Bvh {
         root,

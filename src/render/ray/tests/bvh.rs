@@ -168,14 +168,19 @@ proptest! {
     }
 }
 
-#[test]
-fn a_cancelled_build_stops_with_cancelled() {
+/// An icosphere of 20·4⁵ = 20,480 triangles: large enough for the parallel build path.
+fn sphere_mesh() -> Mesh {
     let f = icosahedron(1.0, 5);
-    let mesh = Mesh {
+    Mesh {
         normals: f.positions.clone(),
         positions: f.positions,
         triangles: f.triangles,
-    };
+    }
+}
+
+#[test]
+fn a_cancelled_build_stops_with_cancelled() {
+    let mesh = sphere_mesh();
     let progress = Progress::new();
     assert!(Bvh::build_cancellable(&mesh, &progress).is_ok());
     progress.cancel();
@@ -212,13 +217,7 @@ fn check_subtree(bvh: &Bvh, mesh: &Mesh, node: &Node, seen: &mut [u32]) {
 
 #[test]
 fn every_triangle_sits_in_exactly_one_leaf() {
-    // 20·4⁵ = 20,480 triangles: large enough for the parallel build path.
-    let f = icosahedron(1.0, 5);
-    let mesh = Mesh {
-        normals: f.positions.clone(),
-        positions: f.positions,
-        triangles: f.triangles,
-    };
+    let mesh = sphere_mesh();
     let bvh = Bvh::build(&mesh);
     let mut seen = vec![0u32; bvh.triangles.len()];
     check_subtree(&bvh, &mesh, &bvh.root.expect("a root"), &mut seen);
