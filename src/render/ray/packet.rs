@@ -161,6 +161,10 @@ fn max_lane(values: F32x8) -> f32 {
 /// What a packet walk through a BVH asks: how far each lane's ray still matters, and what to
 /// do at a leaf.
 trait PacketQuery {
+    /// Whether the answer depends on the order leaves are visited in, so the walk goes nearer
+    /// child first and skips subtrees beyond every lane's limit (a nearest hit). An any-hit
+    /// answer does not: its walk saves finding the nearer child.
+    const ORDERED: bool;
     /// Per lane, the ray parameter beyond which nothing matters any more; −∞ for a lane that
     /// is finished (it then enters no box).
     fn limit(&self) -> F32x8;
@@ -176,6 +180,8 @@ struct Nearest<'a> {
 }
 
 impl PacketQuery for Nearest<'_> {
+    const ORDERED: bool = true;
+
     #[inline(always)]
     fn limit(&self) -> F32x8 {
         self.hits.t
@@ -201,6 +207,8 @@ struct AnyHit<'a> {
 }
 
 impl PacketQuery for AnyHit<'_> {
+    const ORDERED: bool = false;
+
     #[inline(always)]
     fn limit(&self) -> F32x8 {
         self.pending
@@ -251,7 +259,7 @@ impl Bvh {
     /// Visits the leaves some lane of `packet` reaches within the query's limit, nearer child
     /// first (by the nearest entry of any lane), until the query says every lane is finished.
     #[inline(always)]
-    fn walk(&self, packet: &RayPacket, query: &mut impl PacketQuery) {
+    fn walk<Q: PacketQuery>(&self, packet: &RayPacket, query: &mut Q) {
         let Some(root) = &self.root else {
             return;
         };
@@ -275,6 +283,12 @@ impl Bvh {
                 let (hit_a, entry_a) = packet.enter(a.lo(), a.hi(), limit);
                 let (hit_b, entry_b) = packet.enter(b.lo(), b.hi(), limit);
                 match (hit_a.any(), hit_b.any()) {
+                    (true, true) if !Q::ORDERED => {
+                        stack[top] = (b.start(), b.count(), f32::NEG_INFINITY);
+                        top += 1;
+                        current = link(a);
+                        continue;
+                    }
                     (true, true) => {
                         let (near_a, near_b) =
                             (min_where(hit_a, entry_a), min_where(hit_b, entry_b));
@@ -300,7 +314,11 @@ impl Bvh {
                 }
             }
             // Next pending subtree that some lane can still reach before its limit.
-            let farthest = max_lane(query.limit());
+            let farthest = if Q::ORDERED {
+                max_lane(query.limit())
+            } else {
+                f32::INFINITY
+            };
             loop {
                 if top == 0 {
                     return;
