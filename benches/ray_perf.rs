@@ -49,7 +49,9 @@ fn ray_tracer(c: &mut Criterion) {
                 .expect("not cancelled");
             let mut frame = Frame::default();
             let mut trace = || {
-                let stats = renderer.render(&world, &scene.camera, &Progress::new(), &mut frame);
+                let stats = renderer
+                    .render(&world, &scene.camera, &Progress::new(), &mut frame)
+                    .expect("not cancelled");
                 black_box((stats, &frame.pixels[0]));
             };
             group.bench_function(format!("trace {width}x{height}"), |b| b.iter(&mut trace));

@@ -153,8 +153,8 @@ impl SceneAccel {
                 continue;
             }
             let hit = o.bvh.occluded_packet(&packet, dist, lanes);
-            blocked = blocked | hit;
-            pending = pending & !hit;
+            blocked |= hit;
+            pending &= !hit;
             if !pending.any() {
                 break;
             }

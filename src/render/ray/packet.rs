@@ -219,7 +219,7 @@ impl PacketQuery for AnyHit<'_> {
     fn leaf(&mut self, bvh: &Bvh, first: usize, end: usize) -> bool {
         for tri in &bvh.triangles[first..end] {
             let (found, _, _, _) = self.packet.meet_triangle(tri, self.t_max);
-            self.pending = self.pending & !found;
+            self.pending &= !found;
             if !self.pending.any() {
                 return true;
             }
