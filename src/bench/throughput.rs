@@ -45,11 +45,35 @@ impl RasterRate {
     }
 }
 
-/// The ray tracer on one scene: its median render, BVH build included.
+/// The ray tracer on one scene: its median render, BVH build included, and the medians of
+/// renders that cast fewer kinds of ray, so that each kind is timed on its own: primary rays
+/// alone (no shadows, no reflections), then with their shadow rays, then everything.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RayRate {
-    /// The median render's figures.
+    /// The median full render's figures (shadows on, the scene's reflection depth).
     pub stats: RenderStats,
+    /// The median render with primary rays only.
+    pub primary_only: RenderStats,
+    /// The median render with primary rays and their shadow rays, no reflections.
+    pub with_shadows: RenderStats,
+}
+
+/// One kind of ray timed on its own.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RayKind {
+    /// "primary", "shadow" or "reflection".
+    pub name: &'static str,
+    /// Rays of this kind in one render.
+    pub rays: u64,
+    /// Tracing time they add to a render (shading of their hits included).
+    pub time: Duration,
+}
+
+impl RayKind {
+    /// Million rays per second of this kind's own time.
+    pub fn mrays_per_s(&self) -> f64 {
+        self.rays as f64 / self.time.as_secs_f64().max(1e-9) / 1e6
+    }
 }
 
 impl RayRate {
@@ -67,6 +91,30 @@ impl RayRate {
     pub fn mrays_per_s(&self, count: u64) -> f64 {
         count as f64 / self.trace_time().as_secs_f64().max(1e-9) / 1e6
     }
+
+    /// Each kind of ray with the time it adds: primary rays the time of a render casting
+    /// nothing else; shadow rays what casting them adds to that; reflection rays what the
+    /// full render adds to that, the shadow rays from reflected hits counted with them.
+    pub fn kinds(&self) -> [RayKind; 3] {
+        let (primary, shadowed, full) = (&self.primary_only, &self.with_shadows, &self.stats);
+        [
+            RayKind {
+                name: "primary",
+                rays: primary.rays.primary,
+                time: primary.draw,
+            },
+            RayKind {
+                name: "shadow",
+                rays: shadowed.rays.shadow,
+                time: shadowed.draw.saturating_sub(primary.draw),
+            },
+            RayKind {
+                name: "reflection",
+                rays: full.rays.reflection + full.rays.shadow.saturating_sub(shadowed.rays.shadow),
+                time: full.draw.saturating_sub(shadowed.draw),
+            },
+        ]
+    }
 }
 
 /// Throughput of all three algorithms on one scene.
@@ -78,7 +126,7 @@ pub struct Throughput {
 }
 
 /// Measures `world`, built from `scene`, at `size`, `reps` renders each (median kept). Every
-/// render is a one-off: the ray tracer builds its BVH each time.
+/// render is a one-off: the ray tracer builds its BVH each time (timed apart from tracing).
 pub fn measure(
     scene: &Scene,
     world: &Arc<World>,
@@ -104,17 +152,35 @@ pub fn measure(
             face_area,
         });
     }
-    let options = RenderOptions::new(Algorithm::Ray, size.width, size.height);
-    let mut runs = (0..reps.max(1))
-        .map(|_| time_render(world, &scene.camera, &options, &mut frame))
-        .collect::<Result<Vec<_>, _>>()?;
-    runs.sort_by_key(RenderStats::total);
-    let stats = runs[runs.len() / 2];
-    Ok(Throughput {
-        size,
-        raster,
-        ray: RayRate { stats },
-    })
+    let full = RenderOptions::new(Algorithm::Ray, size.width, size.height);
+    let mut median = |options: RenderOptions| -> Result<RenderStats, RenderError> {
+        let mut runs = (0..reps.max(1))
+            .map(|_| time_render(world, &scene.camera, &options, &mut frame))
+            .collect::<Result<Vec<_>, _>>()?;
+        runs.sort_by_key(|r| r.draw);
+        Ok(runs[runs.len() / 2])
+    };
+    let primary_only = median(RenderOptions {
+        shadows: false,
+        max_depth: Some(0),
+        ..full
+    })?;
+    let with_shadows = median(RenderOptions {
+        max_depth: Some(0),
+        ..full
+    })?;
+    // Without reflections the full render is the one just timed.
+    let stats = if world.max_depth == 0 {
+        with_shadows
+    } else {
+        median(full)?
+    };
+    let ray = RayRate {
+        stats,
+        primary_only,
+        with_shadows,
+    };
+    Ok(Throughput { size, raster, ray })
 }
 
 /// A scene showing the OBJ model at `path` alone: scaled to a 2-unit size, seen from the front,

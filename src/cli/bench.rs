@@ -169,16 +169,34 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
         number(s.bvh_build.as_secs_f64() * 1e3),
         number(ray.trace_time().as_secs_f64() * 1e3)
     );
-    for (kind, count) in [
-        ("primary", s.rays.primary),
-        ("shadow", s.rays.shadow),
-        ("reflection", s.rays.reflection),
-        ("all", s.rays.total()),
-    ] {
+    for kind in ray.kinds() {
         println!(
-            "         {kind:10} {count:>12} rays  {:>8} Mrays/s",
-            number(ray.mrays_per_s(count))
+            "         {:10} {:>12} rays  {:>8} Mrays/s  ({} ms on its own)",
+            kind.name,
+            kind.rays,
+            number(kind.mrays_per_s()),
+            number(kind.time.as_secs_f64() * 1e3)
         );
     }
+    println!(
+        "         {:10} {:>12} rays  {:>8} Mrays/s",
+        "all",
+        s.rays.total(),
+        number(ray.mrays_per_s(s.rays.total()))
+    );
+    // One line for scripts: key=value, times in milliseconds.
+    let [primary, shadow, reflection] = ray.kinds();
+    println!(
+        "ray-throughput tracing_ms={:.3} build_ms={:.3} rays={} primary_ms={:.3} primary_rays={} shadow_ms={:.3} shadow_rays={} reflection_ms={:.3} reflection_rays={}",
+        ray.trace_time().as_secs_f64() * 1e3,
+        s.bvh_build.as_secs_f64() * 1e3,
+        s.rays.total(),
+        primary.time.as_secs_f64() * 1e3,
+        primary.rays,
+        shadow.time.as_secs_f64() * 1e3,
+        shadow.rays,
+        reflection.time.as_secs_f64() * 1e3,
+        reflection.rays
+    );
     Ok(())
 }

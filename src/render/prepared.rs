@@ -49,7 +49,7 @@ impl Prepared {
             return Ok(Duration::ZERO);
         }
         progress.check()?;
-        let accel = SceneAccel::build(&self.world);
+        let accel = SceneAccel::build(&self.world, progress)?;
         let took = accel.build_time;
         self.accel = Some(accel);
         Ok(took)

@@ -78,7 +78,7 @@ impl Renderer {
 
     /// Prepares `world` for the options' algorithm now rather than in the next render: keeps
     /// it, and builds the ray tracer's BVH unless one was built for this very world already.
-    /// A cancelled `progress` stops it before it builds anything.
+    /// A cancelled `progress` stops it before it builds anything, or soon after, mid-build.
     pub fn prepare(
         &mut self,
         world: &Arc<World>,

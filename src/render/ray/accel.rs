@@ -5,12 +5,15 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use rayon::prelude::*;
+use wide::CmpGt;
 
 use super::bvh::Bvh;
 use super::half_line::Ray;
 use super::intersect::segment_meets_sphere;
 use super::packet::{PacketHits, RayPacket};
 use crate::mesh::Sphere;
+use crate::render::progress::{Cancelled, Progress};
+use crate::render::simd::{F32x8, V3};
 use crate::world::World;
 
 /// Self-hit offset as a fraction of the scene's bounding radius.
@@ -54,8 +57,10 @@ pub struct SceneAccel {
 }
 
 impl SceneAccel {
-    /// Builds every object's BVH (objects and large meshes in parallel).
-    pub fn build(world: &World) -> SceneAccel {
+    /// Builds every object's BVH (objects and large meshes in parallel); stops with
+    /// [`Cancelled`] soon after `progress` is cancelled, so a scene edited again during a long
+    /// build does not wait for it.
+    pub fn build(world: &World, progress: &Progress) -> Result<SceneAccel, Cancelled> {
         let started = Instant::now();
         let radius = world
             .bounds()
@@ -64,19 +69,21 @@ impl SceneAccel {
         let objects = world
             .objects
             .par_iter()
-            .map(|o| ObjectAccel {
-                bounds: Sphere {
-                    center: o.bounds.center,
-                    radius: o.bounds.radius + epsilon,
-                },
-                bvh: Bvh::build(&o.mesh),
+            .map(|o| {
+                Ok(ObjectAccel {
+                    bounds: Sphere {
+                        center: o.bounds.center,
+                        radius: o.bounds.radius + epsilon,
+                    },
+                    bvh: Bvh::build_cancellable(&o.mesh, progress)?,
+                })
             })
-            .collect();
-        SceneAccel {
+            .collect::<Result<_, Cancelled>>()?;
+        Ok(SceneAccel {
             objects,
             epsilon,
             build_time: started.elapsed(),
-        }
+        })
     }
 
     /// The nearest hit with t in (t_min, t_max) over all objects.
@@ -125,5 +132,33 @@ impl SceneAccel {
             segment_meets_sphere(&ray, o.bounds.center, o.bounds.radius, 0.0, dist)
                 && o.bvh.occluded(&ray, 0.0, dist)
         })
+    }
+
+    /// The lanes of `wanted` whose segment from `from` to `to` (exclusive at both ends) is
+    /// blocked: [`SceneAccel::occluded`] for eight segments at once, lane by lane the same
+    /// arithmetic, so each lane's answer is the one its segment would get alone.
+    pub fn occluded_packet(&self, from: V3<F32x8>, to: Vec3, wanted: F32x8) -> F32x8 {
+        let d = V3::splat(to) - from;
+        let dist = d.length_squared().sqrt();
+        let mut pending = wanted & dist.cmp_gt(F32x8::ZERO);
+        if !pending.any() {
+            return F32x8::ZERO;
+        }
+        let dir = V3::new(d.x / dist, d.y / dist, d.z / dist);
+        let packet = RayPacket::new(from, dir, F32x8::ZERO);
+        let mut blocked = F32x8::ZERO;
+        for o in &self.objects {
+            let lanes = pending & packet.meets_sphere(o.bounds.center, o.bounds.radius, dist);
+            if !lanes.any() {
+                continue;
+            }
+            let hit = o.bvh.occluded_packet(&packet, dist, lanes);
+            blocked |= hit;
+            pending &= !hit;
+            if !pending.any() {
+                break;
+            }
+        }
+        blocked
     }
 }

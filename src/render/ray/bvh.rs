@@ -7,11 +7,13 @@
 //! child first and skips any node that starts beyond the nearest hit found so far.
 
 use glam::{Vec3, Vec3A, Vec4};
+use rayon::prelude::*;
 
 use super::bvh_build;
 use super::half_line::Ray;
 use super::intersect::{Triangle, ray_box};
 use crate::mesh::Mesh;
+use crate::render::progress::{Cancelled, Progress};
 
 /// The deepest tree the builder makes; a node at this depth becomes a leaf whatever its size.
 /// It bounds the traversal stack.
@@ -127,8 +129,14 @@ pub struct Bvh {
 
 impl Bvh {
     /// Builds the hierarchy over `mesh` (in parallel for large meshes).
+    #[cfg(test)]
     pub fn build(mesh: &Mesh) -> Bvh {
-        bvh_build::build(mesh)
+        bvh_build::build(mesh, &Progress::new()).expect("a fresh progress is never cancelled")
+    }
+
+    /// [`Bvh::build`], abandoned once `progress` is cancelled.
+    pub fn build_cancellable(mesh: &Mesh, progress: &Progress) -> Result<Bvh, Cancelled> {
+        bvh_build::build(mesh, progress)
     }
 
     /// Packs a depth-first node list (inner nodes linking to their second child by offset) into
@@ -151,8 +159,9 @@ impl Bvh {
             }
         };
         let inner = flat
-            .iter()
+            .par_iter()
             .enumerate()
+            .with_min_len(4096)
             .filter(|(_, n)| !n.is_leaf())
             .map(|(i, n)| Inner {
                 children: [link(i + 1), link(i + n.start() as usize)],

@@ -12,6 +12,7 @@ use rayon::prelude::*;
 use super::bvh::{Bvh, MAX_TREE_DEPTH, Node};
 use super::intersect::Triangle;
 use crate::mesh::Mesh;
+use crate::render::progress::{Cancelled, Progress};
 
 /// Centroid bins per axis.
 const BINS: usize = 16;
@@ -309,8 +310,9 @@ fn partition(prims: &mut [Prim], left: impl Fn(&Prim) -> bool) -> (usize, Extent
     (i, l, r)
 }
 
-/// Builds the hierarchy over `mesh`.
-pub fn build(mesh: &Mesh) -> Bvh {
+/// Builds the hierarchy over `mesh`, or stops early once `progress` is cancelled (checked at
+/// every node of at least [`PARALLEL_MIN`] triangles, so within milliseconds).
+pub fn build(mesh: &Mesh, progress: &Progress) -> Result<Bvh, Cancelled> {
     let mut prims: Vec<Prim> = (0..mesh.triangles.len())
         .into_par_iter()
         .with_min_len(4096)
@@ -320,10 +322,11 @@ pub fn build(mesh: &Mesh) -> Bvh {
         })
         .collect();
     if prims.is_empty() {
-        return Bvh::default();
+        return Ok(Bvh::default());
     }
     let extent = Extent::of(&prims);
-    let nodes = build_chunks(&mut prims, extent, 0, 0).concat();
+    let nodes = build_chunks(&mut prims, extent, 0, 0, progress).concat();
+    progress.check()?;
     let triangles = prims
         .par_iter()
         .with_min_len(4096)
@@ -332,7 +335,11 @@ pub fn build(mesh: &Mesh) -> Bvh {
             Triangle::new(a, b, c)
         })
         .collect();
-    let ids = prims.iter().map(Prim::index).collect();
+    let ids = prims
+        .par_iter()
+        .with_min_len(4096)
+        .map(Prim::index)
+        .collect();
     let (root, inner) = Bvh::pack(&nodes);
     let mut bvh = Bvh {
         root,
@@ -342,13 +349,23 @@ pub fn build(mesh: &Mesh) -> Bvh {
         depth: 0,
     };
     bvh.depth = bvh.measure_depth();
-    bvh
+    Ok(bvh)
 }
 
 /// The subtree over `prims` (which start at slot `first` of the final order), as node runs to
 /// be concatenated: a large node is split in parallel and its children's runs follow its own, so
-/// the nodes are copied once at the end rather than once per level.
-fn build_chunks(prims: &mut [Prim], extent: Extent, first: usize, depth: usize) -> Vec<Vec<Node>> {
+/// the nodes are copied once at the end rather than once per level. Once `progress` is
+/// cancelled it returns at once, leaving an unusable tree that the caller drops.
+fn build_chunks(
+    prims: &mut [Prim],
+    extent: Extent,
+    first: usize,
+    depth: usize,
+    progress: &Progress,
+) -> Vec<Vec<Node>> {
+    if progress.is_cancelled() {
+        return Vec::new();
+    }
     let n = prims.len();
     if n < PARALLEL_MIN {
         // Upper bound of a binary tree with n leaves: the run never reallocates.
@@ -362,8 +379,8 @@ fn build_chunks(prims: &mut [Prim], extent: Extent, first: usize, depth: usize) 
     };
     let (left, right) = prims.split_at_mut(split.mid);
     let (l, r) = rayon::join(
-        || build_chunks(left, split.left, first, depth + 1),
-        || build_chunks(right, split.right, first + split.mid, depth + 1),
+        || build_chunks(left, split.left, first, depth + 1, progress),
+        || build_chunks(right, split.right, first + split.mid, depth + 1, progress),
     );
     me[split.node].set_start(1 + l.iter().map(Vec::len).sum::<usize>() as u32);
     let mut chunks = vec![me];

@@ -105,10 +105,10 @@ impl RayPacket {
         (near.cmp_le(far), near)
     }
 
-    /// Updates `hits` with this triangle (mesh index `id` of object `object`) where it is nearer:
-    /// Möller–Trumbore as [`Triangle::intersect`] does it, lane by lane.
+    /// Where each lane's ray meets the triangle within (t_min, `t_max`): the lanes that do, and
+    /// their t, u and v. Möller–Trumbore as [`Triangle::intersect`] does it, lane by lane.
     #[inline(always)]
-    fn hit_triangle(&self, tri: &Triangle, id: u32, object: u32, hits: &mut PacketHits) {
+    fn meet_triangle(&self, tri: &Triangle, t_max: F32x8) -> (F32x8, F32x8, F32x8, F32x8) {
         let n = V3::splat(tri.n.into());
         let det = -self.dir.dot(n);
         let limit = PARALLEL_COS * PARALLEL_COS * tri.n.length_squared();
@@ -121,8 +121,14 @@ impl RayPacket {
         let v = -V3::splat(tri.e1.into()).dot(q) * inv_det;
         let inside =
             u.cmp_ge(F32x8::ZERO) & v.cmp_ge(F32x8::ZERO) & (u + v).cmp_le(F32x8::splat(1.0));
-        let nearer = t.cmp_gt(self.t_min) & t.cmp_lt(hits.t);
-        let found = not_parallel & nearer & inside;
+        let nearer = t.cmp_gt(self.t_min) & t.cmp_lt(t_max);
+        (not_parallel & nearer & inside, t, u, v)
+    }
+
+    /// Updates `hits` with this triangle (mesh index `id` of object `object`) where it is nearer.
+    #[inline(always)]
+    fn hit_triangle(&self, tri: &Triangle, id: u32, object: u32, hits: &mut PacketHits) {
+        let (found, t, u, v) = self.meet_triangle(tri, hits.t);
         if found.any() {
             let lanes: u32x8 = bytemuck::cast(found);
             hits.t = found.blend(t, hits.t);
@@ -152,15 +158,112 @@ fn max_lane(values: F32x8) -> f32 {
         .fold(f32::NEG_INFINITY, f32::max)
 }
 
+/// What a packet walk through a BVH asks: how far each lane's ray still matters, and what to
+/// do at a leaf.
+trait PacketQuery {
+    /// Whether the answer depends on the order leaves are visited in, so the walk goes nearer
+    /// child first and skips subtrees beyond every lane's limit (a nearest hit). An any-hit
+    /// answer does not: its walk saves finding the nearer child.
+    const ORDERED: bool;
+    /// Per lane, the ray parameter beyond which nothing matters any more; −∞ for a lane that
+    /// is finished (it then enters no box).
+    fn limit(&self) -> F32x8;
+    /// Tests the triangles in slots `first..end`; returns true when every lane is finished.
+    fn leaf(&mut self, bvh: &Bvh, first: usize, end: usize) -> bool;
+}
+
+/// The nearest hit of each lane: the leaf test keeps the nearest triangle so far.
+struct Nearest<'a> {
+    packet: &'a RayPacket,
+    object: u32,
+    hits: &'a mut PacketHits,
+}
+
+impl PacketQuery for Nearest<'_> {
+    const ORDERED: bool = true;
+
+    #[inline(always)]
+    fn limit(&self) -> F32x8 {
+        self.hits.t
+    }
+
+    #[inline(always)]
+    fn leaf(&mut self, bvh: &Bvh, first: usize, end: usize) -> bool {
+        for k in first..end {
+            self.packet
+                .hit_triangle(&bvh.triangles[k], bvh.ids[k], self.object, self.hits);
+        }
+        false
+    }
+}
+
+/// Any hit before each lane's `t_max`: a lane is finished once one triangle blocks it.
+struct AnyHit<'a> {
+    packet: &'a RayPacket,
+    /// Segment ends, per lane.
+    t_max: F32x8,
+    /// Lanes still looking (all bits set) or finished (zero).
+    pending: F32x8,
+}
+
+impl PacketQuery for AnyHit<'_> {
+    const ORDERED: bool = false;
+
+    #[inline(always)]
+    fn limit(&self) -> F32x8 {
+        self.pending
+            .blend(self.t_max, F32x8::splat(f32::NEG_INFINITY))
+    }
+
+    #[inline(always)]
+    fn leaf(&mut self, bvh: &Bvh, first: usize, end: usize) -> bool {
+        for tri in &bvh.triangles[first..end] {
+            let (found, _, _, _) = self.packet.meet_triangle(tri, self.t_max);
+            self.pending &= !found;
+            if !self.pending.any() {
+                return true;
+            }
+        }
+        false
+    }
+}
+
 impl Bvh {
     /// Updates `hits` with the nearest triangle hits of `packet` in this BVH, the triangles
     /// belonging to object `object`. Children are visited nearer first (by the nearest entry of
     /// any lane), and a pending subtree is skipped once every lane has a hit before it.
     pub fn intersect_packet(&self, packet: &RayPacket, object: u32, hits: &mut PacketHits) {
+        self.walk(
+            packet,
+            &mut Nearest {
+                packet,
+                object,
+                hits,
+            },
+        );
+    }
+
+    /// The lanes of `pending` whose segment (t_min, `t_max`) meets a triangle: the shadow-ray
+    /// test of eight rays at once, each lane stopping at its first blocker. Each lane's answer
+    /// is [`Bvh::occluded`]'s for its ray alone.
+    pub fn occluded_packet(&self, packet: &RayPacket, t_max: F32x8, pending: F32x8) -> F32x8 {
+        let mut query = AnyHit {
+            packet,
+            t_max,
+            pending,
+        };
+        self.walk(packet, &mut query);
+        pending & !query.pending
+    }
+
+    /// Visits the leaves some lane of `packet` reaches within the query's limit, nearer child
+    /// first (by the nearest entry of any lane), until the query says every lane is finished.
+    #[inline(always)]
+    fn walk<Q: PacketQuery>(&self, packet: &RayPacket, query: &mut Q) {
         let Some(root) = &self.root else {
             return;
         };
-        if !packet.enter(root.lo(), root.hi(), hits.t).0.any() {
+        if !packet.enter(root.lo(), root.hi(), query.limit()).0.any() {
             return;
         }
         // Pending far children: link (start, count) and the nearest entry of any lane.
@@ -171,14 +274,21 @@ impl Bvh {
             let (start, count) = current;
             if count > 0 {
                 let first = start as usize;
-                for k in first..first + count as usize {
-                    packet.hit_triangle(&self.triangles[k], self.ids[k], object, hits);
+                if query.leaf(self, first, first + count as usize) {
+                    return;
                 }
             } else {
                 let [a, b] = &self.inner[start as usize].children;
-                let (hit_a, entry_a) = packet.enter(a.lo(), a.hi(), hits.t);
-                let (hit_b, entry_b) = packet.enter(b.lo(), b.hi(), hits.t);
+                let limit = query.limit();
+                let (hit_a, entry_a) = packet.enter(a.lo(), a.hi(), limit);
+                let (hit_b, entry_b) = packet.enter(b.lo(), b.hi(), limit);
                 match (hit_a.any(), hit_b.any()) {
+                    (true, true) if !Q::ORDERED => {
+                        stack[top] = (b.start(), b.count(), f32::NEG_INFINITY);
+                        top += 1;
+                        current = link(a);
+                        continue;
+                    }
                     (true, true) => {
                         let (near_a, near_b) =
                             (min_where(hit_a, entry_a), min_where(hit_b, entry_b));
@@ -203,8 +313,12 @@ impl Bvh {
                     (false, false) => {}
                 }
             }
-            // Next pending subtree that some lane can still reach before its nearest hit.
-            let farthest = max_lane(hits.t);
+            // Next pending subtree that some lane can still reach before its limit.
+            let farthest = if Q::ORDERED {
+                max_lane(query.limit())
+            } else {
+                f32::INFINITY
+            };
             loop {
                 if top == 0 {
                     return;

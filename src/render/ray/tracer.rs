@@ -3,8 +3,9 @@
 //! recursing to a maximum depth.
 //!
 //! Primary rays go in packets of 4×2 neighbouring pixels: traced through the BVH together and
-//! lit together, eight lanes at a time. Shadow and reflection rays, which scatter, go one by
-//! one. Pairs of rows are traced in parallel; every pixel depends only on its own rays, so the
+//! lit together, eight lanes at a time. Their shadow rays toward each light start from eight
+//! neighbouring points and end at one, so they go as a packet too, each lane stopping at its
+//! first blocker. Reflection rays, which scatter, go one by one. Pairs of rows are traced in parallel; every pixel depends only on its own rays, so the
 //! image is the same for any number of threads.
 
 use glam::Vec3;
@@ -161,16 +162,16 @@ impl Tracer<'_> {
             .of_lanes(&std::array::from_fn(|k| objects[source(k)]));
         let p = V3::gather(&surfaces.each_ref().map(|s| s.p));
         let n = V3::gather(&surfaces.each_ref().map(|s| s.n));
+        let origins = V3::gather(&surfaces.each_ref().map(|s| s.origin));
         let lit = self
             .lighting
             .shade_lanes(p, n, -dir, &material, |_, light, facing| {
-                let wanted = facing.move_mask() as u32 & hit_lanes;
-                let reached: [u32; WIDTH] = std::array::from_fn(|k| {
-                    let lit = wanted & 1 << k != 0
-                        && self.light_reaches(surfaces[k].origin, light, stats);
-                    if lit { u32::MAX } else { 0 }
-                });
-                bytemuck::cast(reached)
+                let wanted = facing & lane_mask(hit_lanes);
+                if !self.shadows {
+                    return wanted;
+                }
+                stats.shadow += wanted.move_mask().count_ones() as u64;
+                wanted & !self.accel.occluded_packet(origins, light.position, wanted)
             })
             .to_vec3s();
         std::array::from_fn(|k| {
@@ -227,4 +228,12 @@ impl Tracer<'_> {
         let reflected = Ray::new(s.origin, r.normalize_or(d));
         reflection * self.trace(&reflected, 0.0, depth + 1, stats)
     }
+}
+
+/// The lanes whose bit is set in `bits`, as a lane mask (all bits set or clear).
+#[inline]
+fn lane_mask(bits: u32) -> F32x8 {
+    bytemuck::cast::<[u32; WIDTH], F32x8>(std::array::from_fn(|k| {
+        if bits & 1 << k != 0 { u32::MAX } else { 0 }
+    }))
 }

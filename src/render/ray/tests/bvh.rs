@@ -7,6 +7,7 @@ use glam::{Vec3, Vec3A};
 use proptest::prelude::*;
 
 use crate::mesh::{Mesh, icosahedron};
+use crate::render::progress::{Cancelled, Progress};
 use crate::render::ray::bvh::{Bvh, MAX_TREE_DEPTH, Node};
 use crate::render::ray::half_line::Ray;
 use crate::render::ray::intersect::Triangle;
@@ -136,6 +137,59 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn a_shadow_packet_finds_what_each_of_its_rays_finds_alone(
+        tris in soup(),
+        light in point(4.0),
+        origins in prop::collection::vec(point(2.5), WIDTH),
+        wanted in 0u32..256,
+    ) {
+        // Shadow rays: eight points toward one light, each lane its own segment length.
+        let mesh = mesh_from(&tris);
+        let bvh = Bvh::build(&mesh);
+        let rays: Vec<(Vec3, Vec3)> = origins
+            .iter()
+            .map(|&o| (o, (light - o).try_normalize().unwrap_or(Vec3::X)))
+            .collect();
+        let lengths: [f32; WIDTH] = std::array::from_fn(|k| (light - origins[k]).length());
+        let mask = bytemuck::cast::<[u32; WIDTH], F32x8>(std::array::from_fn(|k| {
+            if wanted & 1 << k != 0 { u32::MAX } else { 0 }
+        }));
+        let blocked = bvh
+            .occluded_packet(&packet_of(&rays, 0.0), F32x8::from(lengths), mask)
+            .move_mask() as u32;
+        for (k, &(origin, dir)) in rays.iter().enumerate() {
+            let alone = wanted & 1 << k != 0 && bvh.occluded(&Ray::new(origin, dir), 0.0, lengths[k]);
+            prop_assert_eq!(blocked & 1 << k != 0, alone, "lane {}", k);
+        }
+    }
+}
+
+/// An icosphere of 20·4⁵ = 20,480 triangles: large enough for the parallel build path.
+fn sphere_mesh() -> Mesh {
+    let f = icosahedron(1.0, 5);
+    Mesh {
+        normals: f.positions.clone(),
+        positions: f.positions,
+        triangles: f.triangles,
+    }
+}
+
+#[test]
+fn a_cancelled_build_stops_with_cancelled() {
+    let mesh = sphere_mesh();
+    let progress = Progress::new();
+    assert!(Bvh::build_cancellable(&mesh, &progress).is_ok());
+    progress.cancel();
+    assert_eq!(
+        Bvh::build_cancellable(&mesh, &progress).err(),
+        Some(Cancelled)
+    );
+}
+
 /// Checks `node`'s subtree: children inside their parent, triangles inside their leaf; counts
 /// how often each triangle slot is reached.
 fn check_subtree(bvh: &Bvh, mesh: &Mesh, node: &Node, seen: &mut [u32]) {
@@ -163,13 +217,7 @@ fn check_subtree(bvh: &Bvh, mesh: &Mesh, node: &Node, seen: &mut [u32]) {
 
 #[test]
 fn every_triangle_sits_in_exactly_one_leaf() {
-    // 20·4⁵ = 20,480 triangles: large enough for the parallel build path.
-    let f = icosahedron(1.0, 5);
-    let mesh = Mesh {
-        normals: f.positions.clone(),
-        positions: f.positions,
-        triangles: f.triangles,
-    };
+    let mesh = sphere_mesh();
     let bvh = Bvh::build(&mesh);
     let mut seen = vec![0u32; bvh.triangles.len()];
     check_subtree(&bvh, &mesh, &bvh.root.expect("a root"), &mut seen);
