@@ -143,11 +143,18 @@ fn draw_panel<DB: DrawingBackend>(
         }
     }
     for (col, &n) in faces.iter().enumerate() {
-        let (x0, _, _, y1) = cell_rect(col as i32, 0);
-        area.draw(&Text::new(tick(&(n as f64)), (x0 + 8, y1 + 10), (FONT, 18)))?;
+        let (x0, _, x1, y1) = cell_rect(col as i32, 0);
+        let label = tick(&(n as f64));
+        let half_width = 5 * label.len() as i32;
+        area.draw(&Text::new(
+            label,
+            ((x0 + x1) / 2 - half_width, y1 + 10),
+            (FONT, 18),
+        ))?;
     }
     let (x_mid, y_axis) = (LEFT + grid_w / 2 - 40, TOP + grid_h + 40);
     area.draw(&Text::new("faces", (x_mid, y_axis), (FONT, 20)))?;
+    area.draw(&Text::new("image", (8, TOP - 30), (FONT, 20)))?;
     // The crossover: every edge between a cell the ray tracer wins and one it does not.
     let ray_wins = |col: usize, row: usize| {
         at(cells, sizes[row], faces[col]).map(|c| c.winner(bvh) == Algorithm::Ray)
