@@ -130,19 +130,25 @@ pub fn points(experiment: Experiment, size: Size, quick: bool) -> Vec<Point> {
             };
             steps
                 .iter()
-                .map(|&(k, s)| {
-                    // Search the scale on a coarse stand-in: box and prism areas do not depend on
-                    // the segments, and an icosahedron's barely changes past 3 subdivisions.
-                    let proxy = |scale| faces_scene(k.min(3), s.min(2), scale);
-                    let scale = calibrate(proxy, 4.0, to_pixels(FACES_AREA), size);
-                    Point {
-                        experiment,
-                        label: format!("k={k}, segments {s}"),
-                        scene: faces_scene(k, s, scale),
-                    }
-                })
+                .map(|&(k, s)| faces_point(k, s, size))
                 .collect()
         }
+    }
+}
+
+/// The experiment 2 scene with subdivisions `k` and segments `s`, scaled to the experiment's
+/// constant total face area on an image of `size`.
+pub fn faces_point(k: u32, s: u32, size: Size) -> Point {
+    let pixels = size.width as f64 * size.height as f64;
+    let target = FACES_AREA * 1.0e6 * pixels / REFERENCE_PIXELS;
+    // Search the scale on a coarse stand-in: box and prism areas do not depend on the segments,
+    // and an icosahedron's barely changes past 3 subdivisions.
+    let proxy = |scale| faces_scene(k.min(3), s.min(2), scale);
+    let scale = calibrate(proxy, 4.0, target, size);
+    Point {
+        experiment: Experiment::Faces,
+        label: format!("k={k}, segments {s}"),
+        scene: faces_scene(k, s, scale),
     }
 }
 

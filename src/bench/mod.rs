@@ -9,6 +9,9 @@
 
 pub mod analysis;
 pub mod area;
+pub mod crossover;
+pub mod crossover_plot;
+pub mod crossover_report;
 mod error;
 pub mod experiments;
 mod format;

@@ -23,7 +23,7 @@ pub const FACES_PLOT: &str = "time-vs-faces.png";
 pub const PLOT_SIZE: (u32, u32) = (1200, 800);
 
 /// The family name the bundled font is registered under.
-const FONT: &str = "sans-serif";
+pub(super) const FONT: &str = "sans-serif";
 /// The study's crossover areas, Mpx, drawn as vertical guides on the area plot.
 const STUDY_MARKS: [(f64, &str); 2] = [
     (3.28, "study: ray overtakes Z-buffer"),
@@ -31,7 +31,7 @@ const STUDY_MARKS: [(f64, &str); 2] = [
 ];
 
 /// Line colour of each algorithm.
-fn color(algorithm: Algorithm) -> RGBColor {
+pub(super) fn color(algorithm: Algorithm) -> RGBColor {
     match algorithm {
         Algorithm::Gouraud => RGBColor(31, 119, 180),
         Algorithm::Phong => RGBColor(255, 127, 14),
@@ -40,7 +40,7 @@ fn color(algorithm: Algorithm) -> RGBColor {
 }
 
 /// Registers the bundled font once per process.
-fn register_bundled_font() {
+pub(super) fn register_bundled_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         register_font(FONT, FontStyle::Normal, dejavu::sans::regular())
@@ -87,7 +87,7 @@ fn decade_below(v: f64) -> f64 {
 }
 
 /// An axis label: 1.5, 20, 300, 40k, 1M.
-fn tick(value: &f64) -> String {
+pub(super) fn tick(value: &f64) -> String {
     let v = *value;
     let trimmed = |x: f64, suffix: &str| {
         let text = format!("{x:.1}");
@@ -208,11 +208,19 @@ where
             .map_err(|e| plot_error(&e))?;
         root.present().map_err(|e| plot_error(&e))?;
     }
+    save_png(path, w, h, buffer)
+}
+
+/// Encodes `buffer` (`w`×`h` RGB pixels) as PNG and writes it to `path` atomically.
+pub(super) fn save_png(path: &Path, w: u32, h: u32, buffer: Vec<u8>) -> Result<(), BenchError> {
     let image = image::RgbImage::from_raw(w, h, buffer).expect("the buffer holds w·h RGB pixels");
     let mut png = Vec::new();
     image
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .map_err(|e| plot_error(&e))?;
+        .map_err(|e| BenchError::Plot {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
     write_atomically(path, &png).map_err(|source| BenchError::Write {
         path: path.to_path_buf(),
         source,

@@ -5,6 +5,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use super::analysis::{AGREEMENT_FACTOR, claims, compare, series};
+use super::crossover::Cell;
+use super::crossover_report;
 use super::error::BenchError;
 use super::experiments::Experiment;
 use super::format::number;
@@ -39,8 +41,14 @@ pub fn csv(results: &[Measurement]) -> String {
     out
 }
 
-/// The Markdown report of `results` measured with `config`; `machine` describes where.
-pub fn markdown(results: &[Measurement], config: &BenchConfig, machine: &str) -> String {
+/// The Markdown report of `results` and of experiment 3's `cells` (none: no such section)
+/// measured with `config`; `machine` describes where.
+pub fn markdown(
+    results: &[Measurement],
+    cells: &[Cell],
+    config: &BenchConfig,
+    machine: &str,
+) -> String {
     let size = config.size;
     let mut md = String::from("# rastray benchmark\n\n");
     let _ = writeln!(
@@ -91,6 +99,10 @@ pub fn markdown(results: &[Measurement], config: &BenchConfig, machine: &str) ->
         }
         md.push('\n');
     }
+    if !cells.is_empty() {
+        md.push_str(&crossover_report::markdown(cells));
+        md.push('\n');
+    }
     md.push_str("## The study's claims beside ours\n\n");
     let _ = writeln!(
         md,
@@ -113,10 +125,12 @@ pub fn markdown(results: &[Measurement], config: &BenchConfig, machine: &str) ->
     md
 }
 
-/// Writes [`CSV_FILE`] and [`REPORT_FILE`] into `dir`.
+/// Writes [`CSV_FILE`] and [`REPORT_FILE`] into `dir`, and experiment 3's
+/// [`crossover_report::CROSSOVER_CSV`] when it ran.
 pub fn write(
     dir: &Path,
     results: &[Measurement],
+    cells: &[Cell],
     config: &BenchConfig,
     machine: &str,
 ) -> Result<(), BenchError> {
@@ -126,7 +140,13 @@ pub fn write(
             .map_err(|source| BenchError::Write { path, source })
     };
     save(CSV_FILE, csv(results))?;
-    save(REPORT_FILE, markdown(results, config, machine))
+    if !cells.is_empty() {
+        save(
+            crossover_report::CROSSOVER_CSV,
+            crossover_report::csv(cells),
+        )?;
+    }
+    save(REPORT_FILE, markdown(results, cells, config, machine))
 }
 
 fn plot_file(experiment: Experiment) -> &'static str {

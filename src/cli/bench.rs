@@ -1,5 +1,5 @@
-//! `rastray bench`: the study's two experiments for the three algorithms, written as a CSV, a
-//! Markdown report and two plots; `rastray bench throughput SCENE`: throughput on one scene.
+//! `rastray bench`: the study's two experiments for the three algorithms and experiment 3 (who
+//! wins where over image size × face count), written as CSVs, a Markdown report and plots; `rastray bench throughput SCENE`: throughput on one scene.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -8,9 +8,10 @@ use anyhow::Context;
 use clap::{Args, Subcommand};
 use indicatif::ProgressBar;
 use rastray::World;
+use rastray::bench::crossover::{BvhCount, run_crossover};
 use rastray::bench::report::{CSV_FILE, REPORT_FILE};
 use rastray::bench::throughput::{measure, obj_scene};
-use rastray::bench::{BenchConfig, number, plot, report, run};
+use rastray::bench::{BenchConfig, crossover_plot, crossover_report, number, plot, report, run};
 use rastray::render::Size;
 
 /// Timed renders per point by default, and in quick mode.
@@ -74,25 +75,35 @@ pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
     );
     let load_before = load_average();
     let results = run(&config, &ProgressBar::new(0))?;
+    let cells = run_crossover(config.quick, config.reps, &ProgressBar::new(0))?;
     let machine = match (load_before, load_average()) {
         (Some(before), Some(after)) => {
             format!("{machine}; load average {before} before the run, {after} after.")
         }
         _ => format!("{machine}."),
     };
-    report::write(&args.out, &results, &config, &machine)?;
+    report::write(&args.out, &results, &cells, &config, &machine)?;
     plot::write(&args.out, &results, config.size)?;
+    crossover_plot::write(&args.out, &cells)?;
     println!();
     for claim in rastray::bench::analysis::claims(&results, config.size) {
         println!("[{}] {}", claim.verdict.name(), claim.study);
         println!("          rastray: {}", claim.ours);
     }
+    for bvh in BvhCount::ALL {
+        println!(
+            "[who wins where] {}",
+            crossover_report::verdict(&cells, bvh)
+        );
+    }
     println!(
-        "\nwrote {}, {}, {} and {} in {}",
+        "\nwrote {}, {}, {}, {}, {} and {} in {}",
         CSV_FILE,
         REPORT_FILE,
         plot::AREA_PLOT,
         plot::FACES_PLOT,
+        crossover_report::CROSSOVER_CSV,
+        crossover_plot::CROSSOVER_PLOT,
         args.out.display()
     );
     Ok(())

@@ -20,6 +20,13 @@ pub struct Size {
     pub height: u32,
 }
 
+impl Size {
+    /// A size of `width` × `height` pixels.
+    pub const fn new(width: u32, height: u32) -> Size {
+        Size { width, height }
+    }
+}
+
 /// A size or sample count refused before anything is allocated.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum SizeError {
