@@ -4,6 +4,9 @@
 use std::path::Path;
 use std::process::Command;
 
+use rastray::bench::crossover::{SIZES_QUICK, STEPS_QUICK};
+use rastray::bench::crossover_plot::CROSSOVER_PLOT;
+use rastray::bench::crossover_report::{CROSSOVER_CSV, CROSSOVER_HEADER};
 use rastray::bench::plot::{AREA_PLOT, FACES_PLOT, PLOT_SIZE};
 use rastray::bench::report::{CSV_FILE, REPORT_FILE};
 
@@ -106,6 +109,35 @@ fn quick_bench_writes_a_csv_a_report_and_two_plots() {
         let distinct: std::collections::HashSet<_> = rgb.pixels().map(|p| p.0).collect();
         assert!(distinct.len() > 10, "{plot} has lines and text on it");
     }
+
+    // Experiment 3: a cell per quick size and face count, each naming the faster algorithms its
+    // own times make faster, with the build counted or not.
+    let cells = std::fs::read_to_string(out.join(CROSSOVER_CSV)).unwrap();
+    let mut lines = cells.lines();
+    assert_eq!(lines.next(), Some(CROSSOVER_HEADER));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), SIZES_QUICK.len() * STEPS_QUICK.len());
+    let name = |i: usize| ["gouraud", "phong", "ray"][i];
+    for row in &rows {
+        let ms: Vec<f64> = row[3..7].iter().map(|v| v.parse().unwrap()).collect();
+        assert!(ms[..3].iter().all(|&t| t > 0.0) && ms[3] >= 0.0, "{row:?}");
+        let fastest = |times: [f64; 3]| {
+            (0..3)
+                .min_by(|&a, &b| times[a].total_cmp(&times[b]))
+                .map(name)
+                .unwrap()
+        };
+        assert_eq!(row[7], fastest([ms[0], ms[1], ms[2]]), "{row:?}");
+        assert_eq!(row[8], fastest([ms[0], ms[1], ms[2] + ms[3]]), "{row:?}");
+    }
+    assert!(report.contains("## Experiment 3: who wins where"));
+    assert_eq!(
+        report.matches("the ray tracer is the fastest in").count(),
+        2
+    );
+    let heat_map = image::open(out.join(CROSSOVER_PLOT)).unwrap().to_rgb8();
+    let distinct: std::collections::HashSet<_> = heat_map.pixels().map(|p| p.0).collect();
+    assert!(distinct.len() > 10, "the heat map has cells and text on it");
 }
 
 #[test]

@@ -1,17 +1,13 @@
 //! Throughput on one scene, in units other renderers report: rasterizer Mtriangles/s and
 //! Mpixels/s per shading, ray tracer Mrays/s per kind of ray, and BVH build time.
 
-use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Duration;
 
-use glam::Vec3;
-
 use super::area::total_face_area;
 use super::runner::{summarize, time_render};
-use crate::mesh::load_obj;
 use crate::render::{Algorithm, Frame, RenderError, RenderOptions, RenderStats, Size, View};
-use crate::scene::{Camera, Light, Object, Scene, Shape};
+use crate::scene::Scene;
 use crate::world::World;
 
 /// One Z-buffer shading on one scene.
@@ -181,32 +177,4 @@ pub fn measure(
         with_shadows,
     };
     Ok(Throughput { size, raster, ray })
-}
-
-/// A scene showing the OBJ model at `path` alone: scaled to a 2-unit size, seen from the front,
-/// lit by one light beside the camera. The model's path is kept as given, relative to its folder.
-pub fn obj_scene(path: &Path) -> Result<Scene, String> {
-    let model = load_obj(path)?;
-    let (lo, hi) = model.bounds();
-    let extent = (hi - lo).max_element();
-    let scale = if extent > 0.0 { 2.0 / extent } else { 1.0 };
-    let file_name = path.file_name().map(PathBuf::from).unwrap_or_default();
-    Ok(Scene {
-        camera: Camera {
-            position: Vec3::new(0.0, 0.6, 3.6),
-            target: Vec3::ZERO,
-            up: Vec3::Y,
-            fov: 45.0,
-        },
-        lights: vec![Light {
-            position: Vec3::new(-2.0, 3.0, 4.0),
-            ..Light::default()
-        }],
-        objects: vec![Object::new(Shape::Mesh {
-            path: file_name,
-            position: Vec3::ZERO,
-            scale,
-        })],
-        ..Scene::default()
-    })
 }

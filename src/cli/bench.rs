@@ -1,7 +1,8 @@
 //! `rastray bench`: the study's two experiments for the three algorithms and experiment 3 (who
-//! wins where over image size × face count), written as CSVs, a Markdown report and plots; `rastray bench throughput SCENE`: throughput on one scene.
+//! wins where over image size × face count), written as CSVs, a Markdown report and plots;
+//! `rastray bench throughput SCENE`: throughput on one scene.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use anyhow::Context;
@@ -10,7 +11,7 @@ use indicatif::ProgressBar;
 use rastray::World;
 use rastray::bench::crossover::{BvhCount, run_crossover};
 use rastray::bench::report::{CSV_FILE, REPORT_FILE};
-use rastray::bench::throughput::{measure, obj_scene};
+use rastray::bench::throughput::measure;
 use rastray::bench::{BenchConfig, crossover_plot, crossover_report, number, plot, report, run};
 use rastray::render::Size;
 
@@ -45,7 +46,7 @@ pub enum BenchCommand {
 
 #[derive(Debug, Args)]
 pub struct ThroughputArgs {
-    /// Scene file (TOML), or an OBJ model shown alone.
+    /// Scene file (TOML), or a model file (.obj, .gltf, .glb) shown on its own.
     pub scene: PathBuf,
     /// Image size, WIDTHxHEIGHT.
     #[arg(short, long, default_value = "1920x1080", value_parser = super::parse_size)]
@@ -136,22 +137,7 @@ fn load_average() -> Option<String> {
 }
 
 fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
-    let is_obj = args
-        .scene
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-    let (scene, base) = if is_obj {
-        let scene =
-            obj_scene(&args.scene).map_err(|e| anyhow::anyhow!("{}: {e}", args.scene.display()))?;
-        let base = args
-            .scene
-            .parent()
-            .map(Path::to_path_buf)
-            .unwrap_or_default();
-        (scene, base)
-    } else {
-        super::load_scene(Some(&args.scene))?
-    };
+    let (scene, base) = super::load_scene(Some(&args.scene))?;
     let world = Arc::new(World::build(&scene, &base)?);
     let t = measure(&scene, &world, args.size, args.reps)?;
     println!(
