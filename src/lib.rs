@@ -34,6 +34,7 @@ pub mod mesh;
 pub mod render;
 pub mod scene;
 pub mod terminal_image;
+pub mod text_escape;
 pub mod tui;
 pub mod warnings;
 pub mod world;

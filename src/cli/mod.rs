@@ -14,6 +14,7 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
 use rastray::render::Size;
+use rastray::text_escape::Escaped;
 use rastray::tui::ColorMode;
 use rastray::world::{MeshFileCache, WorldReport};
 use rastray::{Scene, World};
@@ -116,7 +117,7 @@ pub fn load_scene(path: Option<&Path>) -> anyhow::Result<(Scene, PathBuf)> {
 /// Prints the scene's warnings on stderr, one `warning: …` line each.
 pub fn print_warnings(scene: &Scene, world: &rastray::World) {
     for warning in rastray::warnings(scene, &scene.camera, world) {
-        eprintln!("warning: {warning}");
+        eprintln!("warning: {}", Escaped(&warning.to_string()));
     }
 }
 
@@ -125,7 +126,7 @@ pub fn print_warnings(scene: &Scene, world: &rastray::World) {
 pub fn build_world(scene: &Scene, base: &Path) -> anyhow::Result<WorldReport> {
     let report = World::build_report(scene, base, &mut MeshFileCache::default())?;
     for warning in &report.warnings {
-        eprintln!("warning: {warning}");
+        eprintln!("warning: {}", Escaped(&warning.to_string()));
     }
     Ok(report)
 }
