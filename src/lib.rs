@@ -30,6 +30,7 @@
 pub mod atomic_file;
 pub mod bench;
 pub mod export;
+pub mod input_file;
 pub mod mesh;
 pub mod render;
 pub mod scene;

@@ -87,8 +87,12 @@ fn smooth_normals(
         normals: Vec::with_capacity(positions.len()),
         triangles: Vec::with_capacity(triangles.len()),
     };
-    // For each welded vertex, the output vertices made for it so far (normal, index).
-    let mut made: Vec<Vec<(Vec3, u32)>> = vec![Vec::new(); positions.len()];
+    // The output vertices made for each welded vertex, as chains: `first_made[v]` is the first
+    // (or NONE), `next_made[o]` the one made after output vertex `o` for the same welded
+    // vertex. Two u32 a vertex, where a list per vertex cost some 90 bytes.
+    const NONE: u32 = u32::MAX;
+    let mut first_made = vec![NONE; positions.len()];
+    let mut next_made: Vec<u32> = Vec::with_capacity(positions.len());
     for (t, tri) in triangles.iter().enumerate() {
         let mut out = [0u32; 3];
         for (corner, &v) in tri.iter().enumerate() {
@@ -107,17 +111,23 @@ fn smooth_normals(
                     .find(|u| *u != Vec3::ZERO)
                     .unwrap_or(Vec3::Y);
             }
-            let slot = &mut made[v as usize];
-            out[corner] = match slot.iter().find(|(m, _)| *m == n) {
-                Some(&(_, index)) => index,
-                None => {
-                    let index = mesh.positions.len() as u32;
-                    mesh.positions.push(positions[v as usize]);
-                    mesh.normals.push(n);
-                    slot.push((n, index));
-                    index
+            let mut made = first_made[v as usize];
+            let mut last = NONE;
+            while made != NONE && mesh.normals[made as usize] != n {
+                last = made;
+                made = next_made[made as usize];
+            }
+            if made == NONE {
+                made = mesh.positions.len() as u32;
+                mesh.positions.push(positions[v as usize]);
+                mesh.normals.push(n);
+                next_made.push(NONE);
+                match last {
+                    NONE => first_made[v as usize] = made,
+                    _ => next_made[last as usize] = made,
                 }
-            };
+            }
+            out[corner] = made;
         }
         mesh.triangles.push(out);
     }

@@ -20,12 +20,19 @@ pub enum ObjProblem {
     /// The file could not be read.
     #[error("{0}")]
     Io(std::io::Error),
-    /// A statement the OBJ reader refused.
+    /// A statement that is not OBJ as rastray reads it: what was expected.
     #[error("malformed OBJ: {0}")]
-    Malformed(tobj::LoadError),
+    Malformed(&'static str),
     /// A `v` statement with a NaN or infinite coordinate; `vertex` counts from 1.
     #[error("vertex {vertex} is not a finite number")]
     NonFiniteVertex { vertex: usize },
+    /// A `v` statement with a coordinate beyond the scene's coordinate limits; `vertex` counts
+    /// from 1.
+    #[error(
+        "vertex {vertex} has coordinate {value:e}; coordinates must be {}",
+        crate::scene::limits::COORDINATE
+    )]
+    VertexOutOfRange { vertex: usize, value: f32 },
     /// A face refers to a vertex the file does not define; `index` is as written.
     #[error("a face names vertex {index}, but the file has {count} vertices")]
     MissingVertex { index: i64, count: usize },

@@ -39,3 +39,15 @@ pub fn default_scene() -> Scene {
     rastray::scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/default.toml"))
         .expect("default.toml")
 }
+
+/// Makes a FIFO (named pipe) at `path`, mode 0600.
+pub fn mkfifo(path: &Path) {
+    rustix::fs::mknodat(
+        rustix::fs::CWD,
+        path,
+        rustix::fs::FileType::Fifo,
+        rustix::fs::Mode::from_raw_mode(0o600),
+        0,
+    )
+    .expect("mkfifo");
+}
