@@ -72,7 +72,7 @@ pub enum Command {
 /// number when a signal ended it).
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
-        Some(Command::Render(args)) => render::run(&args).map(|()| ExitCode::SUCCESS),
+        Some(Command::Render(args)) => render::run(&args),
         Some(Command::View(args)) => view::run(&args).map(|()| ExitCode::SUCCESS),
         Some(Command::Info { scene }) => info::run(&scene).map(|()| ExitCode::SUCCESS),
         Some(Command::Bench(args)) => bench::run_bench(&args).map(|()| ExitCode::SUCCESS),
