@@ -134,13 +134,26 @@ mod tests {
     #[test]
     fn data_uris_decode_and_remote_ones_are_refused() {
         let folder = Path::new(".");
+        let mut files = Vec::new();
         assert_eq!(
-            read_uri("data:application/octet-stream;base64,AAEC", folder),
+            read_uri(
+                "data:application/octet-stream;base64,AAEC",
+                folder,
+                &mut files
+            ),
             Ok(vec![0, 1, 2])
         );
-        assert!(read_uri("data:text/plain,hello", folder).is_err());
-        assert!(read_uri("data:application/octet-stream;base64,!!", folder).is_err());
-        let remote = read_uri("https://example.com/a.bin", folder).expect_err("remote");
+        assert!(read_uri("data:text/plain,hello", folder, &mut files).is_err());
+        assert!(
+            read_uri(
+                "data:application/octet-stream;base64,!!",
+                folder,
+                &mut files
+            )
+            .is_err()
+        );
+        let remote = read_uri("https://example.com/a.bin", folder, &mut files).expect_err("remote");
         assert!(remote.contains("only files"), "{remote}");
+        assert!(files.is_empty(), "no file was read: {files:?}");
     }
 }
