@@ -49,7 +49,7 @@ impl Output {
         turntable: Option<Turntable>,
     ) -> Result<Output, FormatError> {
         let path = destination.path();
-        if !destination.is_stream() || (path.extension().is_some() && path != Path::new("-")) {
+        if !destination.is_stream() || path.extension().is_some() {
             return Output::for_path(path, requested, turntable);
         }
         let format = requested.unwrap_or(ImageFormat::PNG8);
