@@ -100,6 +100,8 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
                     skipped += 1;
                     warnings.push(warning);
                 }
+                // Fewer than three indices: nothing to draw, and no part to show for it.
+                PrimitiveRead::Triangles(geometry) if geometry.triangles.is_empty() => {}
                 PrimitiveRead::Triangles(geometry) => {
                     let material = primitive.material();
                     let phong = material.index().map(|index| {
