@@ -14,7 +14,7 @@ use crate::scene::{Falloff, Light, Material, Object, Scene, SceneError, SceneWar
 /// Most triangles a world may hold. Memory follows the triangle count: at this cap a render
 /// peaks at about 2.3 GB (the ray tracer on a flat-shaded mesh, the worst case; the README
 /// states the budget and how it was measured).
-pub const MAX_TRIANGLES: u64 = 10_000_000;
+pub const MAX_TRIANGLES: u64 = 9_000_000;
 
 /// One tessellated object.
 #[derive(Debug, Clone)]
