@@ -209,3 +209,24 @@ fn the_obj_reader_names_lines_and_reads_what_tobj_read() {
     std::fs::write(&latin1, b"v 0 0 0\nv 1 0 \xe9\n").unwrap();
     assert_eq!(load_obj(&latin1).unwrap_err().line, Some(2));
 }
+
+#[test]
+fn an_obj_file_with_more_triangles_than_a_scene_may_hold_stops_where_it_passes_the_cap() {
+    use std::io::Write;
+    let limit = rastray::world::MAX_TRIANGLES as usize;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("many.obj");
+    let mut out = std::io::BufWriter::new(std::fs::File::create(&path).unwrap());
+    out.write_all(b"v 0 0 0\nv 1 0 0\nv 0 1 0\n").unwrap();
+    for _ in 0..limit / 2 {
+        out.write_all(b"f 1 2 3 1\n").unwrap();
+    }
+    out.write_all(b"f 1 2 3\nf 1 2 3\n").unwrap();
+    drop(out);
+    let e = load_obj(&path).unwrap_err();
+    assert!(
+        matches!(e.problem, ObjProblem::TooManyTriangles { .. }),
+        "{e}"
+    );
+    assert_eq!(e.line, Some(3 + limit / 2 + 1), "{e}");
+}

@@ -164,6 +164,12 @@ impl Statements {
         if self.corners.len() < 3 {
             return Ok(());
         }
+        // Refused as soon as it shows: a model file of nothing but tiny faces must not fill
+        // memory before the world counts its triangles.
+        let limit = crate::world::MAX_TRIANGLES;
+        if (self.triangles.len() + self.corners.len() - 2) as u64 > limit {
+            return Err(ObjProblem::TooManyTriangles { limit });
+        }
         let (first, first_normal) = self.corners[0];
         for pair in self.corners[1..].windows(2) {
             let [(b, b_normal), (c, c_normal)] = [pair[0], pair[1]];

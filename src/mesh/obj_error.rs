@@ -36,6 +36,9 @@ pub enum ObjProblem {
     /// A face refers to a vertex the file does not define; `index` is as written.
     #[error("a face names vertex {index}, but the file has {count} vertices")]
     MissingVertex { index: i64, count: usize },
+    /// More triangles than a scene may hold, found before the file was read to its end.
+    #[error("the file holds more than {limit} triangles, the most a scene may hold")]
+    TooManyTriangles { limit: u64 },
     /// Nothing to draw: no face with three or more corners.
     #[error("the file holds no faces")]
     NoFaces,
