@@ -30,11 +30,13 @@
 pub mod atomic_file;
 pub mod bench;
 pub mod export;
+pub mod input_file;
 pub mod mesh;
 pub mod model_scene;
 pub mod render;
 pub mod scene;
 pub mod terminal_image;
+pub mod text_escape;
 pub mod tui;
 pub mod warnings;
 pub mod world;

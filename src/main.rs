@@ -6,14 +6,18 @@ use std::io::Write;
 use std::process::ExitCode;
 
 use clap::Parser;
+use rastray::text_escape::Escaped;
 
 fn main() -> ExitCode {
     let args = cli::Cli::parse();
     match cli::run(args) {
         Ok(code) => code,
         Err(error) => {
-            // stderr may be a terminal that has gone away: nothing to do about a failed write.
-            let _ = writeln!(std::io::stderr(), "error: {error:#}");
+            // Messages quote names, paths and lines from files: their control characters are
+            // escaped. stderr may be a terminal that has gone away: nothing to do about a failed
+            // write.
+            let message = format!("{error:#}");
+            let _ = writeln!(std::io::stderr(), "error: {}", Escaped(&message));
             ExitCode::from(2)
         }
     }

@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use rastray::text_escape::Escaped;
 use rastray::world::WorldObject;
 
 pub fn run(path: &Path) -> anyhow::Result<()> {
@@ -9,7 +10,7 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
     let report = super::build_world(&scene, &base)?;
     let world = &report.world;
     super::print_warnings(&scene, world);
-    println!("{}", path.display());
+    println!("{}", Escaped(&path.display().to_string()));
     let c = &scene.camera;
     println!(
         "camera   position {}  target {}  up {}  fov {}°",
@@ -38,7 +39,7 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
         let area: f32 = parts.iter().map(|(b, _)| b.mesh.surface_area()).sum();
         println!(
             "  [{i}] {:<12} {:<12} {:>9} triangles  area {:>10.3}  centre {}",
-            object.label(),
+            Escaped(object.label()),
             object.shape.kind().name(),
             triangles,
             area,
@@ -47,7 +48,8 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
         for (built, label) in &parts {
             if let Some(label) = label {
                 println!(
-                    "        {label}: {} triangles  colour {}",
+                    "        {}: {} triangles  colour {}",
+                    Escaped(label),
                     built.mesh.triangle_count(),
                     fmt_vec(built.material.color)
                 );
@@ -58,7 +60,7 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
     for (i, light) in scene.lights.iter().enumerate() {
         println!(
             "  [{i}] {:<12} position {}  intensity {}  colour {}",
-            light.name.as_deref().unwrap_or("light"),
+            Escaped(light.name.as_deref().unwrap_or("light")),
             fmt_vec(light.position),
             light.intensity,
             fmt_vec(light.color)

@@ -15,6 +15,7 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
 use rastray::render::Size;
+use rastray::text_escape::Escaped;
 use rastray::tui::ColorMode;
 use rastray::world::{MeshFileCache, WorldReport};
 use rastray::{Scene, World};
@@ -77,7 +78,7 @@ pub enum Command {
 /// number when a signal ended it).
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
-        Some(Command::Render(args)) => render::run(&args).map(|()| ExitCode::SUCCESS),
+        Some(Command::Render(args)) => render::run(&args),
         Some(Command::View(args)) => view::run(&args).map(|()| ExitCode::SUCCESS),
         Some(Command::Info { scene }) => info::run(&scene).map(|()| ExitCode::SUCCESS),
         Some(Command::Bench(args)) => bench::run_bench(&args).map(|()| ExitCode::SUCCESS),
@@ -129,7 +130,7 @@ pub fn load_scene(path: Option<&Path>) -> anyhow::Result<(Scene, PathBuf)> {
 /// Prints the scene's warnings on stderr, one `warning: …` line each.
 pub fn print_warnings(scene: &Scene, world: &rastray::World) {
     for warning in rastray::warnings(scene, &scene.camera, world) {
-        eprintln!("warning: {warning}");
+        eprintln!("warning: {}", Escaped(&warning.to_string()));
     }
 }
 
@@ -138,7 +139,7 @@ pub fn print_warnings(scene: &Scene, world: &rastray::World) {
 pub fn build_world(scene: &Scene, base: &Path) -> anyhow::Result<WorldReport> {
     let report = World::build_report(scene, base, &mut MeshFileCache::default())?;
     for warning in &report.warnings {
-        eprintln!("warning: {warning}");
+        eprintln!("warning: {}", Escaped(&warning.to_string()));
     }
     Ok(report)
 }

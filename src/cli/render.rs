@@ -1,14 +1,21 @@
 //! `rastray render`: one scene to one image or one turntable, with the time taken and a
 //! progress bar for long renders.
 
-use std::path::PathBuf;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use rastray::export::{Exported, MAX_FPS, MAX_FRAMES, Output, Turntable, render_to_file};
-use rastray::render::{Algorithm, Progress, RenderOptions, Size};
+use rastray::export::{
+    Destination, ExportError, Exported, MAX_FPS, MAX_FRAMES, Output, Turntable, render_to,
+};
+use rastray::render::{Algorithm, Progress, RenderError, RenderOptions, Size};
+use rastray::text_escape::Escaped;
+use signal_hook::consts::{SIGINT, SIGTERM};
 
 use super::algorithm_arg::AlgorithmArg;
 use super::format_arg::FormatArg;
@@ -36,7 +43,8 @@ pub struct RenderArgs {
     /// Ray tracer: cast no shadow rays.
     #[arg(long)]
     pub no_shadows: bool,
-    /// Output file: .png or .exr for an image, .gif or .png (animated) for a turntable.
+    /// Output file: .png or .exr for an image, .gif or .png (animated) for a turntable; `-`
+    /// (standard output), a FIFO or a device is written as a stream (PNG unless --format says).
     #[arg(short, long, default_value = "out.png")]
     pub output: PathBuf,
     /// Encoding of the output (default: the extension's; .png is png8). It must match the
@@ -57,12 +65,20 @@ pub struct RenderArgs {
     pub fps: u32,
 }
 
-pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
+pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let turntable = args.turntable.map(|frames| Turntable {
         frames,
         fps: args.fps,
     });
-    let output = Output::for_path(&args.output, args.format.map(|f| f.0), turntable)?;
+    let destination = if args.output == Path::new("-") {
+        Destination::Stdout
+    } else {
+        Destination::for_path(&args.output)?
+    };
+    // The scene file first, before its name's extension is judged: `-o scene.toml` is told it
+    // is the scene. Its models are checked once the world has loaded them.
+    destination.refuse_inputs(args.scene.as_slice())?;
+    let output = Output::for_destination(&destination, args.format.map(|f| f.0), turntable)?;
     let (scene, base) = super::load_scene(args.scene.as_deref())?;
     let options = RenderOptions {
         samples: args.samples,
@@ -72,24 +88,36 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         ..RenderOptions::new(args.algorithm.0, args.size.width, args.size.height)
     };
     options.check()?;
-    let world = Arc::new(super::build_world(&scene, &base)?.world);
+    let report = super::build_world(&scene, &base)?;
+    let inputs: Vec<PathBuf> = args.scene.iter().cloned().chain(report.inputs).collect();
+    destination.refuse_inputs(&inputs)?;
+    let world = Arc::new(report.world);
     super::print_warnings(&scene, &world);
     let progress = Progress::new();
+    // SIGINT and SIGTERM cancel the render: whatever was being written is removed (a file is
+    // only renamed into place when complete), and the exit status says which signal it was.
+    let signal = Arc::new(AtomicUsize::new(0));
+    for number in [SIGINT, SIGTERM] {
+        signal_hook::flag::register_usize(number, Arc::clone(&signal), number as usize)?;
+    }
     let started = Instant::now();
     let exported = std::thread::scope(|s| {
         let job = s.spawn(|| {
-            render_to_file(
+            render_to(
                 &world,
                 &scene.camera,
                 &options,
                 output,
-                &args.output,
+                &destination,
                 &progress,
             )
         });
         let mut bar: Option<ProgressBar> = None;
         while !job.is_finished() {
             std::thread::sleep(Duration::from_millis(5));
+            if signal.load(Ordering::Relaxed) != 0 {
+                progress.cancel();
+            }
             if bar.is_none() && started.elapsed() > PROGRESS_DELAY {
                 bar = Some(progress_bar(&options, args.size, output));
             }
@@ -102,27 +130,47 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
         job.join().expect("the render thread does not panic")
     });
+    let shown = Escaped(&destination.path().display().to_string()).to_string();
+    let exported = match (exported, signal.load(Ordering::Relaxed)) {
+        (Err(ExportError::Render(RenderError::Cancelled(_))), number) if number != 0 => {
+            let name = if number == SIGINT as usize {
+                "SIGINT"
+            } else {
+                "SIGTERM"
+            };
+            let _ = writeln!(
+                std::io::stderr(),
+                "rastray: stopped by {name}; {shown} not written"
+            );
+            return Ok(ExitCode::from(128 + number as u8));
+        }
+        (exported, _) => exported?,
+    };
     let what = format!(
         "{} {}x{} ({}x{} samples",
         options.algorithm, options.width, options.height, options.samples, options.samples
     );
-    match exported? {
-        Exported::Image(stats) => println!(
-            "{what}, {} triangles) rendered in {:.1} ms; wrote {}",
+    let summary = match exported {
+        Exported::Image(stats) => format!(
+            "{what}, {} triangles) rendered in {:.1} ms; wrote {shown}",
             stats.triangles,
             stats.total().as_secs_f64() * 1000.0,
-            args.output.display()
         ),
-        Exported::Turntable(stats) => println!(
-            "{what}, {} triangles) turntable of {} frames in {:.2} s ({:.1} ms per frame); wrote {}",
+        Exported::Turntable(stats) => format!(
+            "{what}, {} triangles) turntable of {} frames in {:.2} s ({:.1} ms per frame); wrote {shown}",
             stats.triangles,
             stats.frames,
             stats.elapsed.as_secs_f64(),
             stats.elapsed.as_secs_f64() * 1000.0 / stats.frames as f64,
-            args.output.display()
         ),
+    };
+    // The image itself may be on standard output: the summary then goes to stderr.
+    if destination == Destination::Stdout {
+        let _ = writeln!(std::io::stderr(), "{summary}");
+    } else {
+        println!("{summary}");
     }
-    Ok(())
+    Ok(ExitCode::SUCCESS)
 }
 
 /// The bar shown on stderr while a long render runs (hidden when stderr is not a terminal):

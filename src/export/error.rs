@@ -22,6 +22,13 @@ pub enum ExportError {
         format: String,
         message: String,
     },
+    /// The output is the scene file or one of the files it loads.
+    #[error(
+        "{}: this is {}, an input of the scene; refusing to write over it",
+        path.display(),
+        input.display()
+    )]
+    OutputIsInput { path: PathBuf, input: PathBuf },
     #[error("{}: {error}", path.display())]
     Io {
         path: PathBuf,

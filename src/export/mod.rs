@@ -8,6 +8,7 @@
 
 mod animation;
 mod apng;
+mod destination;
 mod error;
 mod exr;
 mod format;
@@ -17,12 +18,13 @@ mod png;
 mod still;
 mod turntable;
 
+pub use destination::{Destination, Sink};
 pub use error::ExportError;
 pub use exr::encode_exr;
 pub use format::{AnimationFormat, FormatError, ImageFormat, PngDepth};
-pub use output::{Exported, Output, render_to_file};
+pub use output::{Exported, Output, render_to, render_to_file};
 pub use png::{PngSamples, encode_png, straight};
-pub use still::{encode_image, render_image, save_image};
+pub use still::{encode_image, render_image, save_image, save_image_to};
 pub use turntable::{
     DEFAULT_FPS, MAX_FPS, MAX_FRAMES, Turntable, TurntableError, TurntableStats, render_turntable,
 };

@@ -4,6 +4,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use super::destination::Destination;
 use super::error::ExportError;
 use super::format::{AnimationFormat, FormatError, ImageFormat};
 use super::still::render_image;
@@ -39,11 +40,38 @@ impl Output {
             None => Output::Image(ImageFormat::for_path(path, requested)?),
         })
     }
+
+    /// As [`Output::for_path`] for `destination`; a stream whose name has no extension
+    /// (standard output, `/dev/null`, a FIFO named `pipe`) takes the `requested` format, or PNG.
+    pub fn for_destination(
+        destination: &Destination,
+        requested: Option<ImageFormat>,
+        turntable: Option<Turntable>,
+    ) -> Result<Output, FormatError> {
+        let path = destination.path();
+        if !destination.is_stream() || path.extension().is_some() {
+            return Output::for_path(path, requested, turntable);
+        }
+        let format = requested.unwrap_or(ImageFormat::PNG8);
+        Ok(match (turntable, format) {
+            (None, format) => Output::Image(format),
+            (Some(t), ImageFormat::Png(depth)) => {
+                Output::Turntable(t, AnimationFormat::Apng(depth))
+            }
+            (Some(_), format) => {
+                return Err(FormatError::NotAnimated {
+                    path: path.to_path_buf(),
+                    format,
+                });
+            }
+        })
+    }
 }
 
-/// Renders `world` seen by `camera` with `options` into `path` as `output` says, atomically:
-/// one image, or a turntable around `camera`. `progress` follows the work and cancels it; the
-/// file is written only when everything was rendered.
+/// Renders `world` seen by `camera` with `options` into `path` as `output` says: one image,
+/// or a turntable around `camera`. A regular file is replaced atomically, a FIFO or character
+/// device written as a stream ([`Destination::for_path`]). `progress` follows the work and
+/// cancels it; a file is written only when everything was rendered and nothing cancelled.
 pub fn render_to_file(
     world: &Arc<World>,
     camera: &Camera,
@@ -52,12 +80,36 @@ pub fn render_to_file(
     path: &Path,
     progress: &Progress,
 ) -> Result<Exported, ExportError> {
+    let destination = Destination::for_path(path)?;
+    render_to(world, camera, options, output, &destination, progress)
+}
+
+/// As [`render_to_file`], to a destination chosen by the caller (standard output, for one).
+pub fn render_to(
+    world: &Arc<World>,
+    camera: &Camera,
+    options: &RenderOptions,
+    output: Output,
+    destination: &Destination,
+    progress: &Progress,
+) -> Result<Exported, ExportError> {
     Ok(match output {
         Output::Image(format) => Exported::Image(render_image(
-            world, camera, options, format, path, progress,
+            world,
+            camera,
+            options,
+            format,
+            destination,
+            progress,
         )?),
         Output::Turntable(turntable, format) => Exported::Turntable(render_turntable(
-            world, camera, options, turntable, format, path, progress,
+            world,
+            camera,
+            options,
+            turntable,
+            format,
+            destination,
+            progress,
         )?),
     })
 }

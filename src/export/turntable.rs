@@ -17,9 +17,9 @@ use glam::{Quat, Vec3};
 use rayon::prelude::*;
 
 use super::animation::{Animation, ReadyFrame};
+use super::destination::{Destination, Sink};
 use super::error::ExportError;
 use super::format::AnimationFormat;
-use crate::atomic_file::AtomicFile;
 use crate::render::{Frame, Progress, RenderError, RenderOptions, Renderer};
 use crate::scene::Camera;
 use crate::world::World;
@@ -94,18 +94,19 @@ impl Turntable {
     }
 }
 
-/// Renders the turntable of `world` around `camera` with `options` and writes it to `path` in
-/// `format`, atomically. `progress` counts frames written; cancelling it stops the turntable
-/// after the frames rendering at the time, and leaves `path` untouched.
+/// Renders the turntable of `world` around `camera` with `options` and writes it to
+/// `destination` in `format` (a file atomically). `progress` counts frames written; cancelling
+/// it stops the turntable after the frames rendering at the time, and leaves a file untouched.
 pub fn render_turntable(
     world: &Arc<World>,
     camera: &Camera,
     options: &RenderOptions,
     turntable: Turntable,
     format: AnimationFormat,
-    path: &Path,
+    destination: &Destination,
     progress: &Progress,
 ) -> Result<TurntableStats, ExportError> {
+    let path = destination.path();
     turntable.check()?;
     options.check().map_err(RenderError::from)?;
     let started = Instant::now();
@@ -117,7 +118,7 @@ pub fn render_turntable(
         frames: turntable.frames,
         fps: turntable.fps,
     };
-    let mut out = BufWriter::new(AtomicFile::create(path).map_err(|e| ExportError::io(path, e))?);
+    let mut out = BufWriter::new(destination.open()?);
     progress.start(turntable.frames as u64);
     let orbit = Orbit {
         world,
@@ -130,7 +131,7 @@ pub fn render_turntable(
         turntable,
     };
     let render_all =
-        |out: &mut BufWriter<AtomicFile>| render_frames(&orbit, &animation, out, path, progress);
+        |out: &mut BufWriter<Sink>| render_frames(&orbit, &animation, out, path, progress);
     match options.threads {
         None => render_all(&mut out)?,
         Some(threads) => rayon::ThreadPoolBuilder::new()
@@ -145,6 +146,7 @@ pub fn render_turntable(
     let file = out
         .into_inner()
         .map_err(|e| ExportError::io(path, e.into_error()))?;
+    progress.check().map_err(RenderError::from)?;
     file.commit().map_err(|e| ExportError::io(path, e))?;
     Ok(TurntableStats {
         frames: turntable.frames,
@@ -182,7 +184,7 @@ impl Orbit<'_> {
 fn render_frames(
     orbit: &Orbit,
     animation: &Animation,
-    out: &mut BufWriter<AtomicFile>,
+    out: &mut BufWriter<Sink>,
     path: &Path,
     progress: &Progress,
 ) -> Result<(), ExportError> {

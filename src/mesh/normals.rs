@@ -14,38 +14,39 @@ pub const CREASE_ANGLE_DEGREES: f32 = 60.0;
 /// vertex that meet its own face at less than [`CREASE_ANGLE_DEGREES`]; corners that end with the
 /// same normal share one vertex. Degenerate faces (zero area) take the normal of a neighbour or +Y.
 pub fn with_normals(positions: &[Vec3], triangles: &[[u32; 3]], smooth: bool) -> Mesh {
-    // Area-weighted face normals (the cross product's length is twice the area).
+    if !smooth {
+        return flat_normals(positions, triangles);
+    }
     let weighted: Vec<Vec3> = triangles
         .iter()
-        .map(|&[a, b, c]| {
-            let (a, b, c) = (
-                positions[a as usize],
-                positions[b as usize],
-                positions[c as usize],
-            );
-            (b - a).cross(c - a)
-        })
+        .map(|&t| area_weighted_normal(positions, t))
         .collect();
     let unit: Vec<Vec3> = weighted.iter().map(|n| n.normalize_or_zero()).collect();
-    if smooth {
-        smooth_normals(positions, triangles, &weighted, &unit)
-    } else {
-        flat_normals(positions, triangles, &unit)
-    }
+    smooth_normals(positions, triangles, &weighted, &unit)
 }
 
-fn flat_normals(positions: &[Vec3], triangles: &[[u32; 3]], unit: &[Vec3]) -> Mesh {
+/// The face normal of triangle `[a, b, c]` weighted by its area: the edges' cross product,
+/// whose length is twice the area.
+fn area_weighted_normal(positions: &[Vec3], [a, b, c]: [u32; 3]) -> Vec3 {
+    let (a, b, c) = (
+        positions[a as usize],
+        positions[b as usize],
+        positions[c as usize],
+    );
+    (b - a).cross(c - a)
+}
+
+/// Three vertices a triangle, each with the face's unit normal (computed as it goes: no
+/// per-triangle array beside the mesh being built).
+fn flat_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Mesh {
     let mut mesh = Mesh {
         positions: Vec::with_capacity(triangles.len() * 3),
         normals: Vec::with_capacity(triangles.len() * 3),
         triangles: Vec::with_capacity(triangles.len()),
     };
-    for (t, tri) in triangles.iter().enumerate() {
-        let n = if unit[t] == Vec3::ZERO {
-            Vec3::Y
-        } else {
-            unit[t]
-        };
+    for tri in triangles {
+        let unit = area_weighted_normal(positions, *tri).normalize_or_zero();
+        let n = if unit == Vec3::ZERO { Vec3::Y } else { unit };
         let base = mesh.positions.len() as u32;
         for &i in tri {
             mesh.positions.push(positions[i as usize]);
@@ -87,8 +88,12 @@ fn smooth_normals(
         normals: Vec::with_capacity(positions.len()),
         triangles: Vec::with_capacity(triangles.len()),
     };
-    // For each welded vertex, the output vertices made for it so far (normal, index).
-    let mut made: Vec<Vec<(Vec3, u32)>> = vec![Vec::new(); positions.len()];
+    // The output vertices made for each welded vertex, as chains: `first_made[v]` is the first
+    // (or NONE), `next_made[o]` the one made after output vertex `o` for the same welded
+    // vertex. Two u32 a vertex, where a list per vertex cost some 90 bytes.
+    const NONE: u32 = u32::MAX;
+    let mut first_made = vec![NONE; positions.len()];
+    let mut next_made: Vec<u32> = Vec::with_capacity(positions.len());
     for (t, tri) in triangles.iter().enumerate() {
         let mut out = [0u32; 3];
         for (corner, &v) in tri.iter().enumerate() {
@@ -107,17 +112,23 @@ fn smooth_normals(
                     .find(|u| *u != Vec3::ZERO)
                     .unwrap_or(Vec3::Y);
             }
-            let slot = &mut made[v as usize];
-            out[corner] = match slot.iter().find(|(m, _)| *m == n) {
-                Some(&(_, index)) => index,
-                None => {
-                    let index = mesh.positions.len() as u32;
-                    mesh.positions.push(positions[v as usize]);
-                    mesh.normals.push(n);
-                    slot.push((n, index));
-                    index
+            let mut made = first_made[v as usize];
+            let mut last = NONE;
+            while made != NONE && mesh.normals[made as usize] != n {
+                last = made;
+                made = next_made[made as usize];
+            }
+            if made == NONE {
+                made = mesh.positions.len() as u32;
+                mesh.positions.push(positions[v as usize]);
+                mesh.normals.push(n);
+                next_made.push(NONE);
+                match last {
+                    NONE => first_made[v as usize] = made,
+                    _ => next_made[last as usize] = made,
                 }
-            };
+            }
+            out[corner] = made;
         }
         mesh.triangles.push(out);
     }

@@ -1,150 +1,254 @@
-//! OBJ import through tobj: polygons triangulated, every group merged into one face list.
+//! OBJ import: the statements rastray draws (`v`, `vn`, `f`) read line by line as the file
+//! streams in, polygons fan-triangulated, every group merged into one face list. Nothing else
+//! of the file is kept, so loading takes about the memory of the result: 12 bytes a vertex and
+//! 12 a triangle (36 more a triangle when the file gives normals everywhere).
 
-use std::io::{BufRead, Read};
+use std::io::{BufRead, BufReader};
 use std::path::Path;
 
 use glam::Vec3;
-use tobj::LoadError;
-
-use super::obj_error::{ObjError, ObjProblem};
 
 use super::geometry::ModelGeometry;
+use super::obj_error::{ObjError, ObjProblem};
+use crate::input_file::{MAX_MODEL_BYTES, open_bounded, read_bounded};
+use crate::scene::limits::COORDINATE;
 
 /// An OBJ file's geometry: every group of the file merged into one face list.
 pub type ObjModel = ModelGeometry;
 
-/// Reads the OBJ file at `path`. Errors name the file, and the line where there is one.
+/// What a model file is called in refusals.
+const MODEL_FILE: &str = "a model file";
+
+/// Reads the OBJ file at `path`: a regular file of at most [`MAX_MODEL_BYTES`]. Vertices must
+/// lie within the scene's coordinate limits. Errors name the file, and the line where there is
+/// one. Vertices no face uses are dropped.
 pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
     let fail = |line, problem| ObjError {
         path: path.to_path_buf(),
         line,
         problem,
     };
-    let bytes = std::fs::read(path).map_err(|e| fail(None, ObjProblem::Io(e)))?;
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: false,
-        ignore_points: true,
-        ignore_lines: true,
-    };
-    let mut reader = LineCounter {
-        text: &bytes,
-        consumed: 0,
-    };
-    let loaded = tobj::load_obj_buf(&mut reader, &options, |_| {
-        Err(LoadError::MaterialParseError)
-    });
-    let (models, _materials) = loaded.map_err(|error| match error {
-        // Indices are checked when a group ends, lines after the face that names them.
-        LoadError::FaceVertexOutOfBounds => match missing_vertex(&bytes) {
+    let io = |e| fail(None, ObjProblem::Io(e));
+    let file = open_bounded(path, MAX_MODEL_BYTES, MODEL_FILE).map_err(io)?;
+    let mut reader = BufReader::with_capacity(1 << 16, file);
+    let mut statements = Statements::default();
+    let mut line = Vec::new();
+    let mut number = 0;
+    loop {
+        line.clear();
+        if reader.read_until(b'\n', &mut line).map_err(io)? == 0 {
+            break;
+        }
+        number += 1;
+        statements
+            .read(&line)
+            .map_err(|problem| fail(Some(number), problem))?;
+    }
+    if reader.get_ref().limit() == 0 {
+        return Err(io(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            "the file grew past the size limit while it was read",
+        )));
+    }
+    let count = statements.positions.len();
+    if statements.missing_vertex
+        || statements
+            .triangles
+            .iter()
+            .flatten()
+            .any(|&i| i as usize >= count)
+    {
+        // Faces may come before the vertices they name: only now is a missing one known. The
+        // text is read again only to say where.
+        let text = read_bounded(path, MAX_MODEL_BYTES, MODEL_FILE).map_err(io)?;
+        return Err(match missing_vertex(&text) {
             Some((line, index, count)) => {
                 fail(Some(line), ObjProblem::MissingVertex { index, count })
             }
-            None => fail(None, ObjProblem::Malformed(error)),
-        },
-        LoadError::FaceTexCoordOutOfBounds
-        | LoadError::FaceNormalOutOfBounds
-        | LoadError::FaceColorOutOfBounds => fail(None, ObjProblem::Malformed(error)),
-        _ => fail(Some(reader.line()), ObjProblem::Malformed(error)),
-    })?;
-    if let Some((line, vertex)) = non_finite_vertex(&bytes) {
-        return Err(fail(Some(line), ObjProblem::NonFiniteVertex { vertex }));
-    }
-
-    let mut positions = Vec::new();
-    let mut triangles = Vec::new();
-    let mut corner_normals = Some(Vec::new());
-    for model in &models {
-        let m = &model.mesh;
-        let base = positions.len() as u32;
-        let count = m.positions.len() / 3;
-        for p in m.positions.chunks_exact(3) {
-            let v = Vec3::new(p[0], p[1], p[2]);
-            if !v.is_finite() {
-                // Found above with its line; this guards the statements the scan cannot read.
-                return Err(fail(
-                    None,
-                    ObjProblem::Malformed(LoadError::PositionParseError),
-                ));
-            }
-            positions.push(v);
-        }
-        if m.indices.iter().any(|&i| i as usize >= count) {
-            return Err(fail(
+            None => fail(
                 None,
-                ObjProblem::Malformed(LoadError::FaceVertexOutOfBounds),
-            ));
-        }
-        triangles.extend(
-            m.indices
-                .chunks_exact(3)
-                .map(|t| [t[0] + base, t[1] + base, t[2] + base]),
-        );
-        let has_normals = m.normal_indices.len() == m.indices.len() && !m.normals.is_empty();
-        match (&mut corner_normals, has_normals) {
-            (Some(list), true) => {
-                let normal = |i: u32| -> Vec3 {
-                    let i = i as usize * 3;
-                    m.normals
-                        .get(i..i + 3)
-                        .map(|n| Vec3::new(n[0], n[1], n[2]).normalize_or_zero())
-                        .unwrap_or(Vec3::ZERO)
-                };
-                list.extend(
-                    m.normal_indices
-                        .chunks_exact(3)
-                        .map(|t| [normal(t[0]), normal(t[1]), normal(t[2])]),
-                );
-            }
-            _ => corner_normals = None,
-        }
+                ObjProblem::Malformed("a face names a vertex the file lacks"),
+            ),
+        });
     }
-    if triangles.is_empty() {
+    if statements.triangles.is_empty() {
         return Err(fail(None, ObjProblem::NoFaces));
     }
-    let corner_normals = corner_normals.filter(|list| {
-        list.iter()
-            .flatten()
-            .all(|n| n.is_finite() && *n != Vec3::ZERO)
-    });
-    Ok(ObjModel {
-        positions,
-        triangles,
-        corner_normals,
-    })
+    statements.finish().map_err(|problem| fail(None, problem))
 }
 
-/// The OBJ text handed to tobj, counting how far tobj has read: when it refuses a statement,
-/// the statement is on the last line it consumed.
-struct LineCounter<'a> {
-    text: &'a [u8],
-    consumed: usize,
+/// The geometry read so far.
+#[derive(Default)]
+struct Statements {
+    positions: Vec<Vec3>,
+    /// Unit normals (zero for a zero normal), as `vn` statements give them.
+    normals: Vec<Vec3>,
+    triangles: Vec<[u32; 3]>,
+    /// The normal index of each triangle corner, while every corner so far has one.
+    normal_corners: Vec<[u32; 3]>,
+    /// Whether some face corner has no normal.
+    corner_without_normal: bool,
+    /// Whether a face named a vertex before the first (index 0, or negative too far back).
+    missing_vertex: bool,
+    /// The corners of the face being read: vertex and normal indices, from 0.
+    corners: Vec<(u32, Option<u32>)>,
 }
 
-impl LineCounter<'_> {
-    /// 1-based number of the last line read.
-    fn line(&self) -> usize {
-        let read = &self.text[..self.consumed.saturating_sub(1)];
-        read.iter().filter(|&&b| b == b'\n').count() + 1
+/// An index that names nothing.
+const NONE: u32 = u32::MAX;
+
+impl Statements {
+    /// Reads one line of the file.
+    fn read(&mut self, line: &[u8]) -> Result<(), ObjProblem> {
+        // A comment in another encoding is no obstacle; a number in one is no number.
+        let line = String::from_utf8_lossy(line);
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let p = three_numbers(&mut words).ok_or(ObjProblem::Malformed(
+                    "a vertex is `v x y z`, three numbers",
+                ))?;
+                let vertex = self.positions.len() + 1;
+                if let Some(&value) = p.iter().find(|&&x| !COORDINATE.accepts(x)) {
+                    return Err(if value.is_finite() {
+                        ObjProblem::VertexOutOfRange { vertex, value }
+                    } else {
+                        ObjProblem::NonFiniteVertex { vertex }
+                    });
+                }
+                self.positions.push(Vec3::from_array(p));
+            }
+            Some("vn") => {
+                let n = three_numbers(&mut words).ok_or(ObjProblem::Malformed(
+                    "a normal is `vn x y z`, three numbers",
+                ))?;
+                self.normals.push(Vec3::from_array(n).normalize_or_zero());
+            }
+            Some("f") => self.face(words)?,
+            // Texture coordinates, groups, materials, smoothing groups, points and lines: not
+            // drawn.
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// Reads the corners of an `f` statement and fans them into triangles.
+    fn face(&mut self, words: std::str::SplitWhitespace<'_>) -> Result<(), ObjProblem> {
+        self.corners.clear();
+        for word in words {
+            let mut parts = word.split('/');
+            let vertex =
+                parts
+                    .next()
+                    .and_then(|v| v.parse::<i64>().ok())
+                    .ok_or(ObjProblem::Malformed(
+                        "a face corner is `v`, `v/vt`, `v//vn` or `v/vt/vn`",
+                    ))?;
+            let normal = match parts.nth(1) {
+                Some("") | None => None,
+                Some(n) => Some(n.parse::<i64>().map_err(|_| {
+                    ObjProblem::Malformed("a face corner is `v`, `v/vt`, `v//vn` or `v/vt/vn`")
+                })?),
+            };
+            let vertex = resolve(vertex, self.positions.len());
+            self.missing_vertex |= vertex == NONE;
+            let normal = normal.map(|n| resolve(n, self.normals.len()));
+            if normal.is_some_and(|n| n as usize >= self.normals.len()) {
+                return Err(ObjProblem::Malformed(
+                    "a face names a normal the file lacks",
+                ));
+            }
+            self.corners.push((vertex, normal));
+        }
+        // A point or a line: not drawn.
+        if self.corners.len() < 3 {
+            return Ok(());
+        }
+        // Refused as soon as it shows: a model file of nothing but tiny faces must not fill
+        // memory before the world counts its triangles.
+        let limit = crate::world::MAX_TRIANGLES;
+        if (self.triangles.len() + self.corners.len() - 2) as u64 > limit {
+            return Err(ObjProblem::TooManyTriangles { limit });
+        }
+        let (first, first_normal) = self.corners[0];
+        for pair in self.corners[1..].windows(2) {
+            let [(b, b_normal), (c, c_normal)] = [pair[0], pair[1]];
+            self.triangles.push([first, b, c]);
+            match (first_normal, b_normal, c_normal) {
+                (Some(na), Some(nb), Some(nc)) if !self.corner_without_normal => {
+                    self.normal_corners.push([na, nb, nc]);
+                }
+                _ => {
+                    self.corner_without_normal = true;
+                    self.normal_corners = Vec::new();
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The geometry: unused vertices dropped, corner normals kept when every corner has a
+    /// finite, non-zero one.
+    fn finish(self) -> Result<ModelGeometry, ObjProblem> {
+        let mut triangles = self.triangles;
+        // Renumber the vertices faces use, in file order.
+        let mut new_index = vec![NONE; self.positions.len()];
+        for &i in triangles.iter().flatten() {
+            new_index[i as usize] = 0;
+        }
+        let mut positions = Vec::with_capacity(new_index.iter().filter(|&&i| i == 0).count());
+        for (slot, &p) in new_index.iter_mut().zip(&self.positions) {
+            if *slot == 0 {
+                *slot = positions.len() as u32;
+                positions.push(p);
+            }
+        }
+        drop(self.positions);
+        for i in triangles.iter_mut().flatten() {
+            *i = new_index[*i as usize];
+        }
+        triangles.shrink_to_fit();
+        let corner_normals = if self.corner_without_normal || self.normals.is_empty() {
+            None
+        } else {
+            let normals = &self.normals;
+            let corners: Vec<[Vec3; 3]> = self
+                .normal_corners
+                .iter()
+                .map(|t| t.map(|n| normals[n as usize]))
+                .collect();
+            corners
+                .iter()
+                .flatten()
+                .all(|n| n.is_finite() && *n != Vec3::ZERO)
+                .then_some(corners)
+        };
+        Ok(ModelGeometry {
+            positions,
+            triangles,
+            corner_normals,
+        })
     }
 }
 
-impl Read for LineCounter<'_> {
-    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
-        let n = (&self.text[self.consumed..]).read(buf)?;
-        self.consumed += n;
-        Ok(n)
-    }
+/// Index `i` as written (from 1, or negative back from the `count` read so far) as an index
+/// from 0; [`NONE`] when it names nothing before the end of what was read. A positive index may
+/// name a vertex the file gives later; it is checked at the end.
+fn resolve(i: i64, count: usize) -> u32 {
+    let resolved = if i < 0 { count as i64 + i } else { i - 1 };
+    u32::try_from(resolved)
+        .ok()
+        .filter(|&r| r != NONE)
+        .unwrap_or(NONE)
 }
 
-impl BufRead for LineCounter<'_> {
-    fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
-        Ok(&self.text[self.consumed..])
+/// The next three words as numbers; `None` when they are fewer or not numbers.
+fn three_numbers(words: &mut std::str::SplitWhitespace<'_>) -> Option<[f32; 3]> {
+    let mut xyz = [0.0; 3];
+    for x in &mut xyz {
+        *x = words.next()?.parse().ok()?;
     }
-
-    fn consume(&mut self, amount: usize) {
-        self.consumed = (self.consumed + amount).min(self.text.len());
-    }
+    Some(xyz)
 }
 
 /// The OBJ statements of `text` as (1-based line, keyword, arguments).
@@ -155,20 +259,6 @@ fn statements(text: &[u8]) -> impl Iterator<Item = (usize, &str, std::str::Split
             let mut words = std::str::from_utf8(line).ok()?.split_whitespace();
             Some((n + 1, words.next()?, words))
         })
-}
-
-/// The line and number (from 1) of the first vertex with a NaN or infinite coordinate.
-fn non_finite_vertex(text: &[u8]) -> Option<(usize, usize)> {
-    statements(text)
-        .filter(|(_, keyword, _)| *keyword == "v")
-        .enumerate()
-        .find(|(_, (_, _, coordinates))| {
-            coordinates
-                .clone()
-                .take(3)
-                .any(|c| c.parse::<f32>().is_ok_and(|x| !x.is_finite()))
-        })
-        .map(|(k, (line, _, _))| (line, k + 1))
 }
 
 /// The first face corner naming a vertex the file lacks: its line, the index as written, and

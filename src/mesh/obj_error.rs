@@ -20,15 +20,25 @@ pub enum ObjProblem {
     /// The file could not be read.
     #[error("{0}")]
     Io(std::io::Error),
-    /// A statement the OBJ reader refused.
+    /// A statement that is not OBJ as rastray reads it: what was expected.
     #[error("malformed OBJ: {0}")]
-    Malformed(tobj::LoadError),
+    Malformed(&'static str),
     /// A `v` statement with a NaN or infinite coordinate; `vertex` counts from 1.
     #[error("vertex {vertex} is not a finite number")]
     NonFiniteVertex { vertex: usize },
+    /// A `v` statement with a coordinate beyond the scene's coordinate limits; `vertex` counts
+    /// from 1.
+    #[error(
+        "vertex {vertex} has coordinate {value:e}; coordinates must be {}",
+        crate::scene::limits::COORDINATE
+    )]
+    VertexOutOfRange { vertex: usize, value: f32 },
     /// A face refers to a vertex the file does not define; `index` is as written.
     #[error("a face names vertex {index}, but the file has {count} vertices")]
     MissingVertex { index: i64, count: usize },
+    /// More triangles than a scene may hold, found before the file was read to its end.
+    #[error("the file holds more than {limit} triangles, the most a scene may hold")]
+    TooManyTriangles { limit: u64 },
     /// Nothing to draw: no face with three or more corners.
     #[error("the file holds no faces")]
     NoFaces,

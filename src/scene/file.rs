@@ -9,6 +9,7 @@ use super::field_path::{FieldPath, PathSegment};
 use super::model::Scene;
 use super::validate::validate;
 use crate::atomic_file::write_atomically;
+use crate::input_file::{MAX_SCENE_BYTES, read_bounded_text};
 
 /// The built-in default scene, the same text as `scenes/default.toml`.
 pub const DEFAULT_SCENE_TOML: &str = include_str!("../../scenes/default.toml");
@@ -19,11 +20,13 @@ pub fn default_scene() -> Scene {
         .expect("the built-in default scene is valid (checked by a test)")
 }
 
-/// Reads and checks the scene at `path`.
+/// Reads and checks the scene at `path`: a regular file of at most [`MAX_SCENE_BYTES`].
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|error| SceneError::Io {
-        path: path.to_path_buf(),
-        error,
+    let text = read_bounded_text(path, MAX_SCENE_BYTES, "a scene file").map_err(|error| {
+        SceneError::Io {
+            path: path.to_path_buf(),
+            error,
+        }
     })?;
     from_toml_str(&text, path)
 }

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 #[serde(deny_unknown_fields, default)]
 pub struct Material {
     /// Linear RGB albedo, each channel in [0, 1].
+    #[serde(deserialize_with = "super::vector::vec3")]
     pub color: Vec3,
     /// Diffuse coefficient Kd in [0, 1].
     pub diffuse: f32,

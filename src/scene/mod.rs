@@ -9,6 +9,7 @@ mod material;
 mod model;
 mod object;
 mod validate;
+mod vector;
 mod warning;
 
 pub use error::SceneError;

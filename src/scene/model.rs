@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use super::falloff::{Falloff, falloff_table};
 use super::object::Object;
+use super::vector::vec3;
 
 /// A whole scene as stored in a `.toml` file. Invariant after [`super::validate`]: every number
 /// is finite and within the range its doc states.
@@ -18,7 +19,7 @@ pub struct Scene {
     #[serde(default = "default_ambient")]
     pub ambient: f32,
     /// Linear RGB returned by rays that hit nothing and drawn behind rasterized objects.
-    #[serde(default = "default_background")]
+    #[serde(default = "default_background", deserialize_with = "vec3")]
     pub background: Vec3,
     /// Maximum reflection recursion depth for the ray tracer (0 = no reflections), ≤ 16.
     #[serde(default = "default_max_depth")]
@@ -75,10 +76,13 @@ impl Scene {
 #[serde(deny_unknown_fields, default)]
 pub struct Camera {
     /// Eye position in world units.
+    #[serde(deserialize_with = "vec3")]
     pub position: Vec3,
     /// Point the camera looks at; must differ from `position`.
+    #[serde(deserialize_with = "vec3")]
     pub target: Vec3,
     /// Approximate up direction; must not be parallel to the view direction.
+    #[serde(deserialize_with = "vec3")]
     pub up: Vec3,
     /// Vertical field of view in degrees, in (0, 180).
     pub fov: f32,
@@ -103,12 +107,13 @@ pub struct Light {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     /// Position in world units.
+    #[serde(deserialize_with = "vec3")]
     pub position: Vec3,
     /// Intensity I ≥ 0 (1 is a full-strength light).
     #[serde(default = "default_intensity")]
     pub intensity: f32,
     /// Linear RGB colour of the light, each channel in [0, 1].
-    #[serde(default = "default_light_color")]
+    #[serde(default = "default_light_color", deserialize_with = "vec3")]
     pub color: Vec3,
 }
 

@@ -9,6 +9,7 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
 use super::material::Material;
+use super::vector::optional_vec3;
 
 /// The geometry of an object. Sizes are in world units.
 #[derive(Debug, Clone, PartialEq)]
@@ -175,23 +176,39 @@ pub struct ObjectRecord {
     kind: ShapeKind,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     name: Option<String>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        deserialize_with = "optional_vec3",
+        skip_serializing_if = "Option::is_none"
+    )]
     center: Option<Vec3>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     radius: Option<f32>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     subdivisions: Option<u32>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        deserialize_with = "optional_vec3",
+        skip_serializing_if = "Option::is_none"
+    )]
     size: Option<Vec3>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     segments: Option<u32>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     path: Option<PathBuf>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        deserialize_with = "optional_vec3",
+        skip_serializing_if = "Option::is_none"
+    )]
     position: Option<Vec3>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     scale: Option<f32>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        deserialize_with = "optional_vec3",
+        skip_serializing_if = "Option::is_none"
+    )]
     rotation: Option<Vec3>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     smooth: Option<bool>,

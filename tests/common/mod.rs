@@ -39,3 +39,23 @@ pub fn default_scene() -> Scene {
     rastray::scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/default.toml"))
         .expect("default.toml")
 }
+
+/// Makes a FIFO (named pipe) at `path`, mode 0600.
+pub fn mkfifo(path: &Path) {
+    rustix::fs::mknodat(
+        rustix::fs::CWD,
+        path,
+        rustix::fs::FileType::Fifo,
+        rustix::fs::Mode::from_raw_mode(0o600),
+        0,
+    )
+    .expect("mkfifo");
+}
+
+/// A folder made once per test binary, for cases that write files: a folder per case costs more
+/// than the case.
+pub fn scratch() -> &'static Path {
+    static DIR: std::sync::OnceLock<tempfile::TempDir> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| tempfile::tempdir().expect("tempdir"))
+        .path()
+}

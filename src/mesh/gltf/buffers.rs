@@ -1,19 +1,22 @@
 //! The bytes behind a glTF document's buffers: the GLB binary chunk, `data:` URIs, and files
 //! beside the model. Nothing is fetched from the network.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use base64::Engine;
 use base64::engine::general_purpose::STANDARD;
 
 use super::error::GltfError;
+use crate::input_file::{MAX_MODEL_BYTES, read_bounded};
 
 /// Loads every buffer of `document` in order. `blob` is the GLB binary chunk, when there is one;
-/// relative URIs are resolved against `folder` (the model file's folder).
+/// relative URIs are resolved against `folder` (the model file's folder). Each file read is
+/// added to `files`.
 pub fn load_buffers(
     document: &::gltf::Document,
     blob: Option<Vec<u8>>,
     folder: &Path,
+    files: &mut Vec<PathBuf>,
 ) -> Result<Vec<Vec<u8>>, GltfError> {
     let mut blob = blob;
     document
@@ -27,7 +30,9 @@ pub fn load_buffers(
                         "the file has no binary chunk (or it serves another buffer)".to_string()
                     }),
                 ),
-                ::gltf::buffer::Source::Uri(uri) => (format!("`{uri}`"), read_uri(uri, folder)),
+                ::gltf::buffer::Source::Uri(uri) => {
+                    (format!("`{uri}`"), read_uri(uri, folder, files))
+                }
             };
             let data = data.map_err(|reason| GltfError::Buffer {
                 index,
@@ -47,7 +52,7 @@ pub fn load_buffers(
 }
 
 /// The bytes a buffer URI names: a base64 `data:` URI, or a file relative to `folder`.
-fn read_uri(uri: &str, folder: &Path) -> Result<Vec<u8>, String> {
+fn read_uri(uri: &str, folder: &Path, files: &mut Vec<PathBuf>) -> Result<Vec<u8>, String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let (_, payload) = rest
             .split_once(";base64,")
@@ -61,7 +66,9 @@ fn read_uri(uri: &str, folder: &Path) -> Result<Vec<u8>, String> {
     }
     let relative = percent_decode(uri).ok_or("the URI has a malformed %-escape")?;
     let path = folder.join(relative);
-    std::fs::read(&path).map_err(|e| format!("{}: {e}", path.display()))
+    files.push(path.clone());
+    read_bounded(&path, MAX_MODEL_BYTES, "a glTF buffer")
+        .map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// Whether `uri` starts with a scheme such as `https:` (RFC 3986: a letter, then letters,
@@ -127,13 +134,26 @@ mod tests {
     #[test]
     fn data_uris_decode_and_remote_ones_are_refused() {
         let folder = Path::new(".");
+        let mut files = Vec::new();
         assert_eq!(
-            read_uri("data:application/octet-stream;base64,AAEC", folder),
+            read_uri(
+                "data:application/octet-stream;base64,AAEC",
+                folder,
+                &mut files
+            ),
             Ok(vec![0, 1, 2])
         );
-        assert!(read_uri("data:text/plain,hello", folder).is_err());
-        assert!(read_uri("data:application/octet-stream;base64,!!", folder).is_err());
-        let remote = read_uri("https://example.com/a.bin", folder).expect_err("remote");
+        assert!(read_uri("data:text/plain,hello", folder, &mut files).is_err());
+        assert!(
+            read_uri(
+                "data:application/octet-stream;base64,!!",
+                folder,
+                &mut files
+            )
+            .is_err()
+        );
+        let remote = read_uri("https://example.com/a.bin", folder, &mut files).expect_err("remote");
         assert!(remote.contains("only files"), "{remote}");
+        assert!(files.is_empty(), "no file was read: {files:?}");
     }
 }

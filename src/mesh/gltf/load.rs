@@ -2,7 +2,7 @@
 //! instance of the default scene with its node transforms applied.
 
 use std::collections::HashSet;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use ::gltf::json::validation::{Checked, Error as SchemaError, Validate};
 use ::gltf::json::{self, mesh::Semantic};
@@ -14,6 +14,7 @@ use super::error::GltfError;
 use super::material::phong_from_pbr;
 use super::primitive::{PrimitiveRead, read_primitive};
 use super::warning::ImportWarning;
+use crate::input_file::{MAX_MODEL_BYTES, read_bounded};
 use crate::mesh::ModelGeometry;
 use crate::scene::Material;
 
@@ -39,6 +40,8 @@ pub struct GltfModel {
     pub parts: Vec<GltfPart>,
     /// What was skipped, each reported once.
     pub warnings: Vec<ImportWarning>,
+    /// The buffer files read beside the model, in the order the document names them.
+    pub buffer_files: Vec<PathBuf>,
 }
 
 impl GltfModel {
@@ -58,12 +61,13 @@ impl GltfModel {
 
 /// Reads the glTF or GLB file at `path`; buffers named by relative URIs are read from its folder.
 pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
-    let bytes = std::fs::read(path).map_err(GltfError::Io)?;
+    let bytes = read_bounded(path, MAX_MODEL_BYTES, "a model file").map_err(GltfError::Io)?;
     let (root, blob) = parse(&bytes)?;
     let mut warnings = Vec::new();
     let document = checked_document(root, &mut warnings)?;
     let folder = path.parent().unwrap_or(Path::new(""));
-    let buffers = load_buffers(&document, blob, folder)?;
+    let mut buffer_files = Vec::new();
+    let buffers = load_buffers(&document, blob, folder, &mut buffer_files)?;
     let mut parts = Vec::new();
     let mut skipped = 0;
     let mut triangles = 0u64;
@@ -96,6 +100,8 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
                     skipped += 1;
                     warnings.push(warning);
                 }
+                // Fewer than three indices: nothing to draw, and no part to show for it.
+                PrimitiveRead::Triangles(geometry) if geometry.triangles.is_empty() => {}
                 PrimitiveRead::Triangles(geometry) => {
                     let material = primitive.material();
                     let phong = material.index().map(|index| {
@@ -133,7 +139,11 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
     }
     let mut seen = HashSet::new();
     warnings.retain(|w| seen.insert(w.clone()));
-    Ok(GltfModel { parts, warnings })
+    Ok(GltfModel {
+        parts,
+        warnings,
+        buffer_files,
+    })
 }
 
 /// The JSON document and the GLB binary chunk of `bytes`, with container errors told apart.
