@@ -178,3 +178,26 @@ fn fanned_triangles(text: &str) -> usize {
         .map(|corners| corners.saturating_sub(2))
         .sum()
 }
+
+/// Files the fuzz target found that made tobj 4.0.5 panic or misread a vertex: rastray's reader
+/// loads each with the triangles its faces give, within the coordinate limits.
+#[test]
+fn files_that_broke_tobj_load() {
+    for text in [
+        "v 0 0 0\nv 0 0 0\nv 0 0 0\nv 1e-45 0 7.7368727 1e-45\nvt 0 0\nf 1 1 -1",
+        "f 1 1/-2 1\nv 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nvt 0 0\nf 1 1 1",
+        "v 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nv 0 0 0\nl 1 -2 1\nvt 0 0\nf 1 1 1",
+    ] {
+        let path = common::scratch().join("tobj.obj");
+        std::fs::write(&path, text).unwrap();
+        match load_obj(&path) {
+            Ok(model) => {
+                assert_eq!(model.triangles.len(), fanned_triangles(text), "{text:?}");
+                for p in &model.positions {
+                    assert!(p.to_array().iter().all(|&x| COORDINATE.accepts(x)), "{p}");
+                }
+            }
+            Err(error) => assert!(error.to_string().contains("tobj.obj"), "{error}"),
+        }
+    }
+}
