@@ -25,7 +25,7 @@
 //!
 //! [`export::render_to_file`] does the last five lines in one call, for an image or a
 //! turntable. `docs/ARCHITECTURE.md` maps the modules.
-#![forbid(unsafe_code)]
+#![deny(unsafe_code)]
 
 pub mod atomic_file;
 pub mod bench;

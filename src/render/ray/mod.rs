@@ -8,6 +8,8 @@ mod bvh_build;
 mod half_line;
 mod intersect;
 mod packet;
+#[cfg(target_arch = "x86_64")]
+mod packet_avx2;
 mod primary;
 mod tracer;
 

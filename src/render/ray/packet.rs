@@ -6,6 +6,8 @@
 //! lane's ray reaches it before that lane's nearest hit so far.
 
 use glam::Vec3A;
+use std::ops::{Add, BitAnd, Div, Mul, Sub};
+
 use wide::{CmpGe, CmpGt, CmpLe, CmpLt, u32x8};
 
 use super::bvh::{Bvh, MAX_TREE_DEPTH, Node};
@@ -21,7 +23,7 @@ pub struct RayPacket {
     /// Unit directions.
     pub dir: V3<F32x8>,
     /// Per-component 1/dir, finite (components smaller than [`TINY`] are nudged to it).
-    inv_dir: V3<F32x8>,
+    pub(super) inv_dir: V3<F32x8>,
     /// Hits count only beyond this ray parameter.
     pub t_min: F32x8,
 }
@@ -88,62 +90,245 @@ impl RayPacket {
         let gap = V3::splat(center) - nearest;
         gap.length_squared().cmp_le(F32x8::splat(radius * radius))
     }
+}
+
+/// Eight `f32` lanes as the packet walk needs them: the `wide` type everywhere, and AVX2
+/// registers where the CPU has them (`super::packet_avx2`). Both give the same bits: every
+/// operation is one correctly rounded IEEE operation (no fused multiply-add), and the
+/// comparisons, min and max behave alike on NaN (`minps`/`maxps` return the second operand).
+pub(super) trait Lane8:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + BitAnd<Output = Self>
+{
+    /// From the `wide` lanes, bit for bit.
+    fn from_wide(value: F32x8) -> Self;
+    /// To the `wide` lanes, bit for bit.
+    fn to_wide(self) -> F32x8;
+    /// Every lane `value`.
+    fn splat(value: f32) -> Self;
+    /// `minps(self, other)`.
+    fn min(self, other: Self) -> Self;
+    /// `maxps(self, other)`.
+    fn max(self, other: Self) -> Self;
+    /// All bits set where `self < other` (false on NaN); likewise `le`, `gt`, `ge`.
+    fn lt(self, other: Self) -> Self;
+    /// See [`Lane8::lt`].
+    fn le(self, other: Self) -> Self;
+    /// See [`Lane8::lt`].
+    fn gt(self, other: Self) -> Self;
+    /// See [`Lane8::lt`].
+    fn ge(self, other: Self) -> Self;
+    /// `self` where `mask` is clear, zero where it is set.
+    fn and_not(self, mask: Self) -> Self;
+    /// `t` where `mask` (all bits set or clear per lane) is set, else `f`.
+    fn select(mask: Self, t: Self, f: Self) -> Self;
+    /// Whether any lane has its sign bit set.
+    fn any(self) -> bool;
+
+    /// `0 − self`, as `wide` negates.
+    #[inline(always)]
+    fn negate(self) -> Self {
+        Self::splat(0.0) - self
+    }
+
+    /// The lanes in order.
+    #[inline(always)]
+    fn to_array(self) -> [f32; 8] {
+        self.to_wide().to_array()
+    }
+}
+
+impl Lane8 for F32x8 {
+    #[inline(always)]
+    fn from_wide(value: F32x8) -> F32x8 {
+        value
+    }
+    #[inline(always)]
+    fn to_wide(self) -> F32x8 {
+        self
+    }
+    #[inline(always)]
+    fn splat(value: f32) -> F32x8 {
+        F32x8::splat(value)
+    }
+    #[inline(always)]
+    fn min(self, other: F32x8) -> F32x8 {
+        self.fast_min(other)
+    }
+    #[inline(always)]
+    fn max(self, other: F32x8) -> F32x8 {
+        self.fast_max(other)
+    }
+    #[inline(always)]
+    fn lt(self, other: F32x8) -> F32x8 {
+        self.cmp_lt(other)
+    }
+    #[inline(always)]
+    fn le(self, other: F32x8) -> F32x8 {
+        self.cmp_le(other)
+    }
+    #[inline(always)]
+    fn gt(self, other: F32x8) -> F32x8 {
+        self.cmp_gt(other)
+    }
+    #[inline(always)]
+    fn ge(self, other: F32x8) -> F32x8 {
+        self.cmp_ge(other)
+    }
+    #[inline(always)]
+    fn and_not(self, mask: F32x8) -> F32x8 {
+        self & !mask
+    }
+    #[inline(always)]
+    fn select(mask: F32x8, t: F32x8, f: F32x8) -> F32x8 {
+        mask.blend(t, f)
+    }
+    #[inline(always)]
+    fn any(self) -> bool {
+        F32x8::any(self)
+    }
+}
+
+/// Three lane vectors: x, y, z.
+type Lanes3<L> = [L; 3];
+
+/// `a · b`, summed x, y, z in that order (as [`V3::dot`]).
+#[inline(always)]
+fn dot<L: Lane8>(a: Lanes3<L>, b: Lanes3<L>) -> L {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Every lane of each component from `v`.
+#[inline(always)]
+fn splat3<L: Lane8>(v: Vec3A) -> Lanes3<L> {
+    [L::splat(v.x), L::splat(v.y), L::splat(v.z)]
+}
+
+/// A [`RayPacket`] in the lanes `L` the walk runs on.
+#[derive(Clone, Copy)]
+struct Rays<L> {
+    origin: Lanes3<L>,
+    dir: Lanes3<L>,
+    inv_dir: Lanes3<L>,
+    t_min: L,
+}
+
+impl<L: Lane8> Rays<L> {
+    /// `packet`'s rays, bit for bit.
+    #[inline(always)]
+    fn new(packet: &RayPacket) -> Rays<L> {
+        let lanes = |v: V3<F32x8>| [L::from_wide(v.x), L::from_wide(v.y), L::from_wide(v.z)];
+        Rays {
+            origin: lanes(packet.origin),
+            dir: lanes(packet.dir),
+            inv_dir: lanes(packet.inv_dir),
+            t_min: L::from_wide(packet.t_min),
+        }
+    }
 
     /// Where each ray enters the box [lo, hi] within (t_min, `t_max`): the lanes that do, and
     /// their entry distances (the slab test of [`super::intersect::ray_box`]).
     #[inline(always)]
-    fn enter(&self, lo: Vec3A, hi: Vec3A, t_max: F32x8) -> (F32x8, F32x8) {
-        let slab = |lo: f32, hi: f32, o: F32x8, inv: F32x8| {
-            let (t1, t2) = ((F32x8::splat(lo) - o) * inv, (F32x8::splat(hi) - o) * inv);
-            (t1.fast_min(t2), t1.fast_max(t2))
+    fn enter(&self, lo: Vec3A, hi: Vec3A, t_max: L) -> (L, L) {
+        let slab = |axis: usize, lo: f32, hi: f32| {
+            let (o, inv) = (self.origin[axis], self.inv_dir[axis]);
+            let (t1, t2) = ((L::splat(lo) - o) * inv, (L::splat(hi) - o) * inv);
+            (t1.min(t2), t1.max(t2))
         };
-        let (nx, fx) = slab(lo.x, hi.x, self.origin.x, self.inv_dir.x);
-        let (ny, fy) = slab(lo.y, hi.y, self.origin.y, self.inv_dir.y);
-        let (nz, fz) = slab(lo.z, hi.z, self.origin.z, self.inv_dir.z);
-        let near = nx.fast_max(ny).fast_max(nz).fast_max(self.t_min);
-        let far = fx.fast_min(fy).fast_min(fz).fast_min(t_max);
-        (near.cmp_le(far), near)
+        let (nx, fx) = slab(0, lo.x, hi.x);
+        let (ny, fy) = slab(1, lo.y, hi.y);
+        let (nz, fz) = slab(2, lo.z, hi.z);
+        let near = nx.max(ny).max(nz).max(self.t_min);
+        let far = fx.min(fy).min(fz).min(t_max);
+        (near.le(far), near)
     }
 
     /// Where each lane's ray meets the triangle within (t_min, `t_max`): the lanes that do, and
     /// their t, u and v. Möller–Trumbore as [`Triangle::intersect`] does it, lane by lane.
     #[inline(always)]
-    fn meet_triangle(&self, tri: &Triangle, t_max: F32x8) -> (F32x8, F32x8, F32x8, F32x8) {
-        let n = V3::splat(tri.n.into());
-        let det = -self.dir.dot(n);
+    fn meet_triangle(&self, tri: &Triangle, t_max: L) -> (L, L, L, L) {
+        let n = splat3(tri.n);
+        let det = dot(self.dir, n).negate();
         let limit = PARALLEL_COS * PARALLEL_COS * tri.n.length_squared();
-        let not_parallel = (det * det).cmp_gt(F32x8::splat(limit) * self.dir.length_squared());
-        let inv_det = F32x8::splat(1.0) / det;
-        let to_origin = self.origin - V3::splat(tri.v0.into());
-        let t = to_origin.dot(n) * inv_det;
-        let q = to_origin.cross(self.dir);
-        let u = V3::splat(tri.e2.into()).dot(q) * inv_det;
-        let v = -V3::splat(tri.e1.into()).dot(q) * inv_det;
-        let inside =
-            u.cmp_ge(F32x8::ZERO) & v.cmp_ge(F32x8::ZERO) & (u + v).cmp_le(F32x8::splat(1.0));
-        let nearer = t.cmp_gt(self.t_min) & t.cmp_lt(t_max);
+        let not_parallel = (det * det).gt(L::splat(limit) * dot(self.dir, self.dir));
+        let inv_det = L::splat(1.0) / det;
+        let v0 = splat3::<L>(tri.v0);
+        let o = [
+            self.origin[0] - v0[0],
+            self.origin[1] - v0[1],
+            self.origin[2] - v0[2],
+        ];
+        let t = dot(o, n) * inv_det;
+        let d = self.dir;
+        let q = [
+            o[1] * d[2] - o[2] * d[1],
+            o[2] * d[0] - o[0] * d[2],
+            o[0] * d[1] - o[1] * d[0],
+        ];
+        let u = dot(splat3(tri.e2), q) * inv_det;
+        let v = dot(splat3(tri.e1), q).negate() * inv_det;
+        let zero = L::splat(0.0);
+        let inside = u.ge(zero) & v.ge(zero) & (u + v).le(L::splat(1.0));
+        let nearer = t.gt(self.t_min) & t.lt(t_max);
         (not_parallel & nearer & inside, t, u, v)
     }
+}
 
-    /// Updates `hits` with this triangle (mesh index `id` of object `object`) where it is nearer.
+/// [`PacketHits`] in the lanes `L`; the indices ride as bits in float lanes.
+#[derive(Clone, Copy)]
+struct LaneHits<L> {
+    t: L,
+    u: L,
+    v: L,
+    object: L,
+    triangle: L,
+}
+
+impl<L: Lane8> LaneHits<L> {
+    /// `hits`, bit for bit.
     #[inline(always)]
-    fn hit_triangle(&self, tri: &Triangle, id: u32, object: u32, hits: &mut PacketHits) {
-        let (found, t, u, v) = self.meet_triangle(tri, hits.t);
+    fn new(hits: &PacketHits) -> LaneHits<L> {
+        LaneHits {
+            t: L::from_wide(hits.t),
+            u: L::from_wide(hits.u),
+            v: L::from_wide(hits.v),
+            object: L::from_wide(bytemuck::cast(hits.object)),
+            triangle: L::from_wide(bytemuck::cast(hits.triangle)),
+        }
+    }
+
+    /// Back to [`PacketHits`], bit for bit.
+    #[inline(always)]
+    fn store(&self, hits: &mut PacketHits) {
+        hits.t = self.t.to_wide();
+        hits.u = self.u.to_wide();
+        hits.v = self.v.to_wide();
+        hits.object = bytemuck::cast(self.object.to_wide());
+        hits.triangle = bytemuck::cast(self.triangle.to_wide());
+    }
+
+    /// Takes this triangle (mesh index `id` of object `object`) where it is nearer.
+    #[inline(always)]
+    fn add(&mut self, rays: &Rays<L>, tri: &Triangle, id: u32, object: u32) {
+        let (found, t, u, v) = rays.meet_triangle(tri, self.t);
         if found.any() {
-            let lanes: u32x8 = bytemuck::cast(found);
-            hits.t = found.blend(t, hits.t);
-            hits.u = found.blend(u, hits.u);
-            hits.v = found.blend(v, hits.v);
-            hits.triangle = lanes.blend(u32x8::splat(id), hits.triangle);
-            hits.object = lanes.blend(u32x8::splat(object), hits.object);
+            self.t = L::select(found, t, self.t);
+            self.u = L::select(found, u, self.u);
+            self.v = L::select(found, v, self.v);
+            self.triangle = L::select(found, L::splat(f32::from_bits(id)), self.triangle);
+            self.object = L::select(found, L::splat(f32::from_bits(object)), self.object);
         }
     }
 }
 
 /// The smallest lane of `values` where `mask` holds (+∞ when none does).
 #[inline(always)]
-fn min_where(mask: F32x8, values: F32x8) -> f32 {
-    mask.blend(values, F32x8::splat(f32::INFINITY))
+fn min_where<L: Lane8>(mask: L, values: L) -> f32 {
+    L::select(mask, values, L::splat(f32::INFINITY))
         .to_array()
         .into_iter()
         .fold(f32::INFINITY, f32::min)
@@ -151,7 +336,7 @@ fn min_where(mask: F32x8, values: F32x8) -> f32 {
 
 /// The largest lane of `values`.
 #[inline(always)]
-fn max_lane(values: F32x8) -> f32 {
+fn max_lane<L: Lane8>(values: L) -> f32 {
     values
         .to_array()
         .into_iter()
@@ -160,66 +345,65 @@ fn max_lane(values: F32x8) -> f32 {
 
 /// What a packet walk through a BVH asks: how far each lane's ray still matters, and what to
 /// do at a leaf.
-trait PacketQuery {
+trait PacketQuery<L> {
     /// Whether the answer depends on the order leaves are visited in, so the walk goes nearer
     /// child first and skips subtrees beyond every lane's limit (a nearest hit). An any-hit
     /// answer does not: its walk saves finding the nearer child.
     const ORDERED: bool;
     /// Per lane, the ray parameter beyond which nothing matters any more; −∞ for a lane that
     /// is finished (it then enters no box).
-    fn limit(&self) -> F32x8;
+    fn limit(&self) -> L;
     /// Tests the triangles in slots `first..end`; returns true when every lane is finished.
     fn leaf(&mut self, bvh: &Bvh, first: usize, end: usize) -> bool;
 }
 
 /// The nearest hit of each lane: the leaf test keeps the nearest triangle so far.
-struct Nearest<'a> {
-    packet: &'a RayPacket,
+struct Nearest<'a, L> {
+    rays: &'a Rays<L>,
     object: u32,
-    hits: &'a mut PacketHits,
+    hits: LaneHits<L>,
 }
 
-impl PacketQuery for Nearest<'_> {
+impl<L: Lane8> PacketQuery<L> for Nearest<'_, L> {
     const ORDERED: bool = true;
 
     #[inline(always)]
-    fn limit(&self) -> F32x8 {
+    fn limit(&self) -> L {
         self.hits.t
     }
 
     #[inline(always)]
     fn leaf(&mut self, bvh: &Bvh, first: usize, end: usize) -> bool {
         for k in first..end {
-            self.packet
-                .hit_triangle(&bvh.triangles[k], bvh.ids[k], self.object, self.hits);
+            self.hits
+                .add(self.rays, &bvh.triangles[k], bvh.ids[k], self.object);
         }
         false
     }
 }
 
 /// Any hit before each lane's `t_max`: a lane is finished once one triangle blocks it.
-struct AnyHit<'a> {
-    packet: &'a RayPacket,
+struct AnyHit<'a, L> {
+    rays: &'a Rays<L>,
     /// Segment ends, per lane.
-    t_max: F32x8,
+    t_max: L,
     /// Lanes still looking (all bits set) or finished (zero).
-    pending: F32x8,
+    pending: L,
 }
 
-impl PacketQuery for AnyHit<'_> {
+impl<L: Lane8> PacketQuery<L> for AnyHit<'_, L> {
     const ORDERED: bool = false;
 
     #[inline(always)]
-    fn limit(&self) -> F32x8 {
-        self.pending
-            .blend(self.t_max, F32x8::splat(f32::NEG_INFINITY))
+    fn limit(&self) -> L {
+        L::select(self.pending, self.t_max, L::splat(f32::NEG_INFINITY))
     }
 
     #[inline(always)]
     fn leaf(&mut self, bvh: &Bvh, first: usize, end: usize) -> bool {
         for tri in &bvh.triangles[first..end] {
-            let (found, _, _, _) = self.packet.meet_triangle(tri, self.t_max);
-            self.pending &= !found;
+            let (found, _, _, _) = self.rays.meet_triangle(tri, self.t_max);
+            self.pending = self.pending.and_not(found);
             if !self.pending.any() {
                 return true;
             }
@@ -233,37 +417,68 @@ impl Bvh {
     /// belonging to object `object`. Children are visited nearer first (by the nearest entry of
     /// any lane), and a pending subtree is skipped once every lane has a hit before it.
     pub fn intersect_packet(&self, packet: &RayPacket, object: u32, hits: &mut PacketHits) {
-        self.walk(
-            packet,
-            &mut Nearest {
-                packet,
-                object,
-                hits,
-            },
-        );
+        #[cfg(target_arch = "x86_64")]
+        if super::packet_avx2::intersect_packet(self, packet, object, hits) {
+            return;
+        }
+        self.nearest_in::<F32x8>(packet, object, hits);
     }
 
     /// The lanes of `pending` whose segment (t_min, `t_max`) meets a triangle: the shadow-ray
     /// test of eight rays at once, each lane stopping at its first blocker. Each lane's answer
     /// is [`Bvh::occluded`]'s for its ray alone.
     pub fn occluded_packet(&self, packet: &RayPacket, t_max: F32x8, pending: F32x8) -> F32x8 {
-        let mut query = AnyHit {
-            packet,
-            t_max,
-            pending,
-        };
-        self.walk(packet, &mut query);
-        pending & !query.pending
+        #[cfg(target_arch = "x86_64")]
+        if let Some(blocked) = super::packet_avx2::occluded_packet(self, packet, t_max, pending) {
+            return blocked;
+        }
+        self.any_hit_in::<F32x8>(packet, t_max, pending)
     }
 
-    /// Visits the leaves some lane of `packet` reaches within the query's limit, nearer child
+    /// [`Bvh::intersect_packet`] on lanes `L`.
+    #[inline(always)]
+    pub(super) fn nearest_in<L: Lane8>(
+        &self,
+        packet: &RayPacket,
+        object: u32,
+        hits: &mut PacketHits,
+    ) {
+        let rays = Rays::<L>::new(packet);
+        let mut query = Nearest {
+            rays: &rays,
+            object,
+            hits: LaneHits::new(hits),
+        };
+        self.walk(&rays, &mut query);
+        query.hits.store(hits);
+    }
+
+    /// [`Bvh::occluded_packet`] on lanes `L`.
+    #[inline(always)]
+    pub(super) fn any_hit_in<L: Lane8>(
+        &self,
+        packet: &RayPacket,
+        t_max: F32x8,
+        pending: F32x8,
+    ) -> F32x8 {
+        let rays = Rays::<L>::new(packet);
+        let mut query = AnyHit {
+            rays: &rays,
+            t_max: L::from_wide(t_max),
+            pending: L::from_wide(pending),
+        };
+        self.walk(&rays, &mut query);
+        pending & !query.pending.to_wide()
+    }
+
+    /// Visits the leaves some lane of `rays` reaches within the query's limit, nearer child
     /// first (by the nearest entry of any lane), until the query says every lane is finished.
     #[inline(always)]
-    fn walk<Q: PacketQuery>(&self, packet: &RayPacket, query: &mut Q) {
+    fn walk<L: Lane8, Q: PacketQuery<L>>(&self, rays: &Rays<L>, query: &mut Q) {
         let Some(root) = &self.root else {
             return;
         };
-        if !packet.enter(root.lo(), root.hi(), query.limit()).0.any() {
+        if !rays.enter(root.lo(), root.hi(), query.limit()).0.any() {
             return;
         }
         // Pending far children: link (start, count) and the nearest entry of any lane.
@@ -280,8 +495,8 @@ impl Bvh {
             } else {
                 let [a, b] = &self.inner[start as usize].children;
                 let limit = query.limit();
-                let (hit_a, entry_a) = packet.enter(a.lo(), a.hi(), limit);
-                let (hit_b, entry_b) = packet.enter(b.lo(), b.hi(), limit);
+                let (hit_a, entry_a) = rays.enter(a.lo(), a.hi(), limit);
+                let (hit_b, entry_b) = rays.enter(b.lo(), b.hi(), limit);
                 match (hit_a.any(), hit_b.any()) {
                     (true, true) if !Q::ORDERED => {
                         stack[top] = (b.start(), b.count(), f32::NEG_INFINITY);
