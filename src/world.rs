@@ -8,7 +8,9 @@ use std::time::SystemTime;
 
 use rayon::prelude::*;
 
-use crate::mesh::{Mesh, MeshFile, MeshFileError, Sphere, tessellate, tessellate_part};
+use crate::mesh::{
+    Mesh, MeshFile, MeshFileError, Sphere, UniquePositions, tessellate, tessellate_part,
+};
 use crate::scene::{Falloff, Light, Material, Object, Scene, SceneError, SceneWarning, Shape};
 
 /// Most triangles a world may hold. Memory follows the triangle count: at this cap a render
@@ -25,6 +27,21 @@ pub struct WorldObject {
     pub material: Material,
     /// Sphere enclosing the mesh: the first cull of the ray tracer.
     pub bounds: Sphere,
+    /// The mesh's distinct positions, which the Z-buffer projects once each per frame; built with
+    /// the object and kept matching `mesh`.
+    pub unique: UniquePositions,
+}
+
+impl WorldObject {
+    /// An object of `mesh` and `material`, with its bounds and distinct positions.
+    pub fn new(mesh: Mesh, material: Material) -> WorldObject {
+        WorldObject {
+            bounds: mesh.bounding_sphere(),
+            unique: UniquePositions::of(&mesh),
+            mesh,
+            material,
+        }
+    }
 }
 
 /// Everything the renderers read, in world space.
@@ -97,15 +114,6 @@ fn part_material(object: &Object, from_file: Option<Material>) -> Material {
         from_file.unwrap_or(object.material)
     } else {
         object.material
-    }
-}
-
-fn world_object(mesh: Mesh, material: Material) -> WorldObject {
-    let bounds = mesh.bounding_sphere();
-    WorldObject {
-        mesh,
-        material,
-        bounds,
     }
 }
 
@@ -194,7 +202,7 @@ impl World {
                         .map(|part| {
                             let mesh = tessellate_part(object, &part.geometry, centre);
                             (
-                                world_object(mesh, part_material(object, part.material)),
+                                WorldObject::new(mesh, part_material(object, part.material)),
                                 WorldObjectSource {
                                     object: index,
                                     part: Some(part.label.clone()),
@@ -204,14 +212,14 @@ impl World {
                         .collect()
                 }
                 Some(MeshFile::Obj(geometry)) => vec![(
-                    world_object(tessellate(object, Some(geometry)), object.material),
+                    WorldObject::new(tessellate(object, Some(geometry)), object.material),
                     WorldObjectSource {
                         object: index,
                         part: None,
                     },
                 )],
                 None => vec![(
-                    world_object(tessellate(object, None), object.material),
+                    WorldObject::new(tessellate(object, None), object.material),
                     WorldObjectSource {
                         object: index,
                         part: None,

@@ -40,12 +40,7 @@ fn quad_world(lo: (f32, f32), hi: (f32, f32), z: f32) -> World {
         positions,
         triangles: vec![[0, 1, 2], [0, 2, 3]],
     };
-    let bounds = mesh.bounding_sphere();
-    world_of(vec![WorldObject {
-        mesh,
-        material: Material::default(),
-        bounds,
-    }])
+    world_of(vec![WorldObject::new(mesh, Material::default())])
 }
 
 fn world_of(objects: Vec<WorldObject>) -> World {
@@ -103,12 +98,7 @@ fn a_face_behind_the_eye_counts_nothing_and_one_through_it_is_clipped() {
         normals: vec![Vec3::Y; 4],
         triangles: vec![[0, 1, 2], [0, 2, 3]],
     };
-    let bounds = mesh.bounding_sphere();
-    let floor = world_of(vec![WorldObject {
-        mesh,
-        material: Material::default(),
-        bounds,
-    }]);
+    let floor = world_of(vec![WorldObject::new(mesh, Material::default())]);
     let area = total_face_area(&floor, &view);
     assert!(area > 4000.0 && area <= 5000.0 + 1e-6, "area {area}");
 }

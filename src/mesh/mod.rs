@@ -12,6 +12,7 @@ mod obj_error;
 mod patch;
 mod prism;
 mod tessellate;
+mod unique_positions;
 
 pub use cuboid::cuboid;
 pub use face_list::{Mesh, Sphere};
@@ -24,3 +25,4 @@ pub use obj_error::{ObjError, ObjProblem};
 pub use patch::FaceList;
 pub use prism::prism;
 pub use tessellate::{object_transform, tessellate, tessellate_part};
+pub use unique_positions::UniquePositions;

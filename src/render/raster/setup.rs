@@ -1,4 +1,5 @@
-//! A frame's geometry, from meshes to binned screen triangles: the vertex stage once per vertex,
+//! A frame's geometry, from meshes to binned screen triangles: the vertex stage once per distinct
+//! position (a flat-shaded mesh repeats each position per face; the projection is the same),
 //! triangle setup in parallel chunks, the planes of the varying for the triangles that remain,
 //! and bins of rows. Everything lives in a [`RasterScratch`] kept from frame to frame, so a
 //! preview of the same world allocates nothing that grows with the mesh.
@@ -35,7 +36,7 @@ pub struct RasterScratch {
 /// The geometry of a frame: projected vertices, screen triangles and their bins.
 #[derive(Debug, Default)]
 pub struct Geometry {
-    /// Projected vertices, per object.
+    /// Projected distinct positions ([`crate::world::WorldObject::unique`]), per object.
     projected: Vec<ProjectedVertices>,
     /// The setup tasks and their screen triangles.
     chunks: Vec<SetupChunk>,
@@ -86,12 +87,12 @@ impl Geometry {
         self.plan_chunks(world);
         let projected = &self.projected;
         self.chunks.par_iter_mut().for_each(|chunk| {
-            let mesh = &world.objects[chunk.object].mesh;
+            let unique = &world.objects[chunk.object].unique;
             let projected = &projected[chunk.object];
             chunk.triangles.clear();
             chunk.corners.clear();
             for first in (chunk.start..chunk.end).step_by(WIDTH) {
-                let group = &mesh.triangles[first..(first + WIDTH).min(chunk.end)];
+                let group = &unique.triangles[first..(first + WIDTH).min(chunk.end)];
                 let mut lanes = may_cover(view, projected, group);
                 while lanes != 0 {
                     let lane = lanes.trailing_zeros() as usize;
@@ -99,7 +100,7 @@ impl Geometry {
                     setup_triangle(
                         view,
                         projected,
-                        &mesh.positions,
+                        &unique.positions,
                         group[lane],
                         chunk.object as u32,
                         (first + lane) as u32,
@@ -140,12 +141,12 @@ impl Geometry {
         )
     }
 
-    /// The vertex stage: every vertex of every object projected once.
+    /// The vertex stage: every distinct position of every object projected once.
     fn project(&mut self, world: &World, view: &View) {
         self.projected
             .resize_with(world.objects.len(), ProjectedVertices::default);
         for (o, projected) in world.objects.iter().zip(&mut self.projected) {
-            let positions = &o.mesh.positions;
+            let positions = &o.unique.positions;
             projected.resize(positions.len());
             projected
                 .runs_mut(VERTEX_CHUNK)

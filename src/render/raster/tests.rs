@@ -46,13 +46,8 @@ fn tessellated_square(segments: u32, angle_degrees: f32) -> World {
     let mesh = with_normals(&face.positions, &face.triangles, false).transformed(
         Affine3A::from_quat(Quat::from_rotation_z(angle_degrees.to_radians())),
     );
-    let bounds = mesh.bounding_sphere();
     World {
-        objects: vec![WorldObject {
-            mesh,
-            material: Material::default(),
-            bounds,
-        }],
+        objects: vec![WorldObject::new(mesh, Material::default())],
         lights: vec![],
         ambient: 1.0,
         background: Vec3::ZERO,
