@@ -558,14 +558,17 @@ impl Bvh {
     fn prefetch(&self, node: &Node) {
         let start = node.start() as usize;
         if node.is_leaf() {
-            // A triangle is one cache line; a leaf's first two cover most leaves.
+            // A triangle is one cache line.
             for tri in self
                 .triangles
                 .iter()
                 .skip(start)
-                .take(2.min(node.count() as usize))
+                .take(node.count() as usize)
             {
                 prefetch::ahead(tri);
+            }
+            if let Some(id) = self.ids.get(start) {
+                prefetch::ahead(id);
             }
         } else if let Some(inner) = self.inner.get(start) {
             prefetch::ahead(inner);
