@@ -13,6 +13,7 @@ use wide::{CmpGe, CmpGt, CmpLe, CmpLt, u32x8};
 use super::bvh::{Bvh, MAX_TREE_DEPTH, Node};
 use super::half_line::TINY;
 use super::intersect::{PARALLEL_COS, Triangle};
+use super::prefetch;
 use crate::render::simd::{F32x8, V3};
 
 /// Eight rays `origin + t·dir`, t > `t_min`, one per lane.
@@ -494,6 +495,8 @@ impl Bvh {
                 }
             } else {
                 let [a, b] = &self.inner[start as usize].children;
+                self.prefetch(a);
+                self.prefetch(b);
                 let limit = query.limit();
                 let (hit_a, entry_a) = rays.enter(a.lo(), a.hi(), limit);
                 let (hit_b, entry_b) = rays.enter(b.lo(), b.hi(), limit);
@@ -545,6 +548,30 @@ impl Bvh {
                     break;
                 }
             }
+        }
+    }
+}
+
+impl Bvh {
+    /// Hints that what `node` links to, its children or its first triangles, is read soon.
+    #[inline(always)]
+    fn prefetch(&self, node: &Node) {
+        let start = node.start() as usize;
+        if node.is_leaf() {
+            // A triangle is one cache line.
+            for tri in self
+                .triangles
+                .iter()
+                .skip(start)
+                .take(node.count() as usize)
+            {
+                prefetch::ahead(tri);
+            }
+            if let Some(id) = self.ids.get(start) {
+                prefetch::ahead(id);
+            }
+        } else if let Some(inner) = self.inner.get(start) {
+            prefetch::ahead(inner);
         }
     }
 }

@@ -5,8 +5,9 @@
 //! Primary rays go in packets of 4×2 neighbouring pixels: traced through the BVH together and
 //! lit together, eight lanes at a time. Their shadow rays toward each light start from eight
 //! neighbouring points and end at one, so they go as a packet too, each lane stopping at its
-//! first blocker. Reflection rays, which scatter, go one by one. Pairs of rows are traced in parallel; every pixel depends only on its own rays, so the
-//! image is the same for any number of threads.
+//! first blocker. Reflection rays, which scatter, go one by one. Bands of rows are traced in
+//! parallel, tile by tile; every pixel depends only on its own rays, so the image is the same for
+//! any number of threads.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -14,6 +15,7 @@ use rayon::prelude::*;
 use super::accel::SceneAccel;
 use super::half_line::Ray;
 use super::primary::primary_packet;
+use crate::mesh::Mesh;
 use crate::render::camera::View;
 use crate::render::materials::ObjectMaterials;
 use crate::render::options::RenderOptions;
@@ -32,6 +34,11 @@ pub const MAX_REFLECTION_DEPTH: u32 = crate::scene::MAX_DEPTH;
 const PACKET_COLUMNS: usize = 4;
 /// … by this many rows.
 const PACKET_ROWS: usize = WIDTH / PACKET_COLUMNS;
+/// Packets are traced tile by tile, tiles of this many columns (a multiple of
+/// [`PACKET_COLUMNS`]) …
+const TILE_COLUMNS: usize = 32;
+/// … by this many rows (a multiple of [`PACKET_ROWS`]); a band of this many rows is one task.
+const TILE_ROWS: usize = 8;
 
 /// Traces `world` through `view` into `out` (`view.width`×`view.height` pixels), with an
 /// acceleration structure built from `world`; returns the rays cast.
@@ -57,27 +64,40 @@ pub fn trace_into(
     };
     let width = view.width as usize;
     debug_assert_eq!(out.len(), width * view.height as usize);
-    out.par_chunks_mut(width * PACKET_ROWS)
+    out.par_chunks_mut(width * TILE_ROWS)
         .enumerate()
-        .map(|(pair, rows)| {
+        .map(|(band, rows)| {
             progress.check()?;
             let mut stats = RayCounts::default();
-            let (top, height) = (pair * PACKET_ROWS, rows.len() / width);
-            for left in (0..width).step_by(PACKET_COLUMNS) {
-                // Lane k is pixel (left + k % 4, top + k / 4); lanes past the image's right
-                // edge or last row repeat a pixel inside it and are not written.
-                let column = |k: usize| (left + k % PACKET_COLUMNS).min(width - 1);
-                let row = |k: usize| (k / PACKET_COLUMNS).min(height - 1);
-                let real = (0..WIDTH)
-                    .filter(|k| left + k % PACKET_COLUMNS < width && k / PACKET_COLUMNS < height)
-                    .fold(0u32, |lanes, k| lanes | 1 << k);
-                let pixel = std::array::from_fn(|k| (column(k) as u32, (top + row(k)) as u32));
-                let colors = tracer.trace_primary(view, pixel, real, &mut stats);
-                for k in (0..WIDTH).filter(|k| real & 1 << k != 0) {
-                    rows[row(k) * width + column(k)] = colors[k];
+            let (band_top, band_height) = (band * TILE_ROWS, rows.len() / width);
+            // Tile by tile, and within a tile packet row by packet row: neighbouring packets,
+            // which visit much the same BVH nodes, follow each other while those are cached.
+            for tile_left in (0..width).step_by(TILE_COLUMNS) {
+                let tile_right = (tile_left + TILE_COLUMNS).min(width);
+                for pair_top in (0..band_height).step_by(PACKET_ROWS) {
+                    // The packet's rows, within the band; the last may be a single row.
+                    let height = (band_height - pair_top).min(PACKET_ROWS);
+                    let top = band_top + pair_top;
+                    for left in (tile_left..tile_right).step_by(PACKET_COLUMNS) {
+                        // Lane k is pixel (left + k % 4, top + k / 4); lanes past the image's
+                        // right edge or last row repeat a pixel inside it and are not written.
+                        let column = |k: usize| (left + k % PACKET_COLUMNS).min(width - 1);
+                        let row = |k: usize| (k / PACKET_COLUMNS).min(height - 1);
+                        let real = (0..WIDTH)
+                            .filter(|k| {
+                                left + k % PACKET_COLUMNS < width && k / PACKET_COLUMNS < height
+                            })
+                            .fold(0u32, |lanes, k| lanes | 1 << k);
+                        let pixel =
+                            std::array::from_fn(|k| (column(k) as u32, (top + row(k)) as u32));
+                        let colors = tracer.trace_primary(view, pixel, real, &mut stats);
+                        for k in (0..WIDTH).filter(|k| real & 1 << k != 0) {
+                            rows[(pair_top + row(k)) * width + column(k)] = colors[k];
+                        }
+                    }
                 }
             }
-            progress.advance(height as u64);
+            progress.advance(band_height as u64);
             Ok(stats)
         })
         .try_reduce(RayCounts::default, |a, b| Ok(a + b))
@@ -91,6 +111,12 @@ struct Tracer<'a> {
     materials: ObjectMaterials,
     shadows: bool,
     max_depth: u32,
+}
+
+/// The corners of a triangle hit: positions (world units) and unit normals, in the mesh's order.
+struct Corners {
+    positions: [Vec3; 3],
+    normals: [Vec3; 3],
 }
 
 /// The surface at a ray's hit.
@@ -108,15 +134,36 @@ impl Tracer<'_> {
     /// barycentrics (u, v): position and normal interpolated exactly as the Phong fragment
     /// stage interpolates them.
     fn surface(&self, object: u32, triangle: u32, u: f32, v: f32, d: Vec3) -> Surface {
-        let mesh = &self.world.objects[object as usize].mesh;
-        let [a, b, c] = mesh.triangles[triangle as usize].map(|k| k as usize);
+        let abc = self.mesh(object).triangles[triangle as usize];
+        self.surface_at(&self.corners(object, abc), u, v, d)
+    }
+
+    /// The mesh of object `object`.
+    #[inline]
+    fn mesh(&self, object: u32) -> &Mesh {
+        &self.world.objects[object as usize].mesh
+    }
+
+    /// The positions and normals at vertices `abc` of object `object`'s mesh.
+    #[inline]
+    fn corners(&self, object: u32, abc: [u32; 3]) -> Corners {
+        let mesh = self.mesh(object);
+        let abc = abc.map(|k| k as usize);
+        Corners {
+            positions: abc.map(|k| mesh.positions[k]),
+            normals: abc.map(|k| mesh.normals[k]),
+        }
+    }
+
+    /// [`Tracer::surface`] on the corners of the triangle hit.
+    #[inline]
+    fn surface_at(&self, corners: &Corners, u: f32, v: f32, d: Vec3) -> Surface {
+        let ([pa, pb, pc], [na, nb, nc]) = (corners.positions, corners.normals);
         let w = [1.0 - u - v, u, v];
-        let p = mesh.positions[a] * w[0] + mesh.positions[b] * w[1] + mesh.positions[c] * w[2];
-        let n = (mesh.normals[a] * w[0] + mesh.normals[b] * w[1] + mesh.normals[c] * w[2])
-            .normalize_or_zero();
+        let p = pa * w[0] + pb * w[1] + pc * w[2];
+        let n = (na * w[0] + nb * w[1] + nc * w[2]).normalize_or_zero();
         // The geometric normal, turned toward where the ray came from; the offset is scaled to
         // the scene.
-        let [pa, pb, pc] = [a, b, c].map(|k| mesh.positions[k]);
         let mut ng = (pb - pa).cross(pc - pa).normalize_or_zero();
         if ng.dot(d) > 0.0 {
             ng = -ng;
@@ -153,9 +200,17 @@ impl Tracer<'_> {
         let (objects, triangles) = (hits.object.to_array(), hits.triangle.to_array());
         let (u, v) = (hits.u.to_array(), hits.v.to_array());
         let dirs = dir.to_vec3s();
+        // Each stage for all lanes before the next, so that the lanes' loads from the meshes,
+        // which miss the cache on large meshes, overlap rather than wait one after another.
+        let corner_indices: [[u32; 3]; WIDTH] = std::array::from_fn(|k| {
+            let s = source(k);
+            self.mesh(objects[s]).triangles[triangles[s] as usize]
+        });
+        let corners: [Corners; WIDTH] =
+            std::array::from_fn(|k| self.corners(objects[source(k)], corner_indices[k]));
         let surfaces: [Surface; WIDTH] = std::array::from_fn(|k| {
             let s = source(k);
-            self.surface(objects[s], triangles[s], u[s], v[s], dirs[k])
+            self.surface_at(&corners[k], u[s], v[s], dirs[k])
         });
         let material = self
             .materials

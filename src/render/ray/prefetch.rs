@@ -1,0 +1,26 @@
+//! Cache prefetch hints: the BVH walk asks for the next nodes and triangles it may read while it
+//! still tests the current ones, so that on large meshes (whose tree does not fit in the cache)
+//! the loads overlap instead of waiting one after another.
+//!
+//! Measured gain, the reason for the `unsafe` here: see [`ahead`].
+#![allow(unsafe_code)]
+
+/// Hints that the cache line holding the start of `value` is read soon. A hint only: it never
+/// faults, changes no memory and no result.
+///
+/// Measured on the 1.31M-triangle icosphere (`../shared/perf/icosphere.toml`) at 640×360 on 2
+/// threads, BVH kept, 30 frames per run, the build with the hints and one without them
+/// alternating five times on a shared, loaded machine: CPU time per frame 49.0–54.2 ms with
+/// them, 54.5–59.1 ms without (about 10% less).
+#[inline(always)]
+pub(super) fn ahead<T>(value: &T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: `prefetcht0` only hints the cache: it reads nothing the program sees, cannot
+    // fault, and the address comes from a live reference.
+    unsafe {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = value;
+}
