@@ -51,6 +51,18 @@ pub struct Geometry {
     projected: Vec<ProjectedVertices>,
     /// The setup tasks and their screen triangles.
     chunks: Vec<SetupChunk>,
+    /// Depth and triangle buffers of the bands being drawn, one set per render thread.
+    pub(super) band_buffers: Vec<std::sync::Mutex<BandBuffers>>,
+}
+
+/// The buffers a thread draws a band of rows into, kept from frame to frame: at 1920×1080 a
+/// band's are a quarter of a megabyte, which fresh allocations would fault in every frame.
+#[derive(Debug, Default)]
+pub struct BandBuffers {
+    /// 1/w of the nearest surface so far (0 = nothing).
+    pub depth: Vec<f32>,
+    /// Number + 1 in the band's bin of the triangle that drew the pixel (0 = nothing).
+    pub id: Vec<u32>,
 }
 
 /// One setup task: triangles `start..end` of one object, and what they became.

@@ -19,7 +19,7 @@ use rayon::prelude::*;
 
 use super::fragments::{Fragments, Packer};
 use super::screen_triangle::ScreenTriangle;
-use super::setup::Geometry;
+use super::setup::{BandBuffers, Geometry};
 use super::spans::for_each_span;
 use super::varying::Varying;
 use crate::render::camera::View;
@@ -27,17 +27,6 @@ use crate::render::progress::{Cancelled, Progress};
 use crate::render::simd::{F32x8, WIDTH, load};
 use crate::world::World;
 use wide::{CmpGe, u32x8};
-
-/// Per-band buffers, reused by each worker thread from band to band.
-#[derive(Debug, Default)]
-struct BandBuffers<'a> {
-    /// 1/w of the nearest surface so far (0 = nothing).
-    depth: Vec<f32>,
-    /// Number + 1 in `triangles` of the triangle that drew the pixel (0 = nothing).
-    id: Vec<u32>,
-    /// The band's triangles, in the order they were drawn.
-    triangles: Vec<&'a ScreenTriangle>,
-}
 
 /// Draws `world` seen through `view` into `out` (`view.width`×`view.height` pixels, every one
 /// written), with `geometry` as working memory. Each band of rows is scan-converted with a
@@ -57,24 +46,29 @@ pub fn draw(
 ) -> Result<(), Cancelled> {
     let width = view.width;
     debug_assert_eq!(out.len(), width as usize * view.height as usize);
+    let threads = rayon::current_num_threads().max(1);
+    let mut pool = std::mem::take(&mut geometry.band_buffers);
+    pool.resize_with(threads, Default::default);
     let bands = geometry.set_up(world, view, varying);
-    out.par_chunks_mut((bands.rows * width) as usize)
+    let drawn = out
+        .par_chunks_mut((bands.rows * width) as usize)
         .enumerate()
-        .try_for_each_init(BandBuffers::default, |buffers, (band, rows)| {
+        .try_for_each_init(Vec::new, |triangles, (band, rows)| {
             progress.check()?;
             let top = band as u32 * bands.rows;
             let band_rows = rows.len() as u32 / width;
-            let BandBuffers {
-                depth,
-                id,
-                triangles,
-            } = buffers;
+            let thread = rayon::current_thread_index().unwrap_or(0) % threads;
+            // A thread draws one band at a time, so its buffers are free; were they not, the
+            // band would draw into fresh ones rather than wait.
+            let mut held = pool[thread].try_lock().ok();
+            let mut fresh = BandBuffers::default();
+            let BandBuffers { depth, id } = held.as_deref_mut().unwrap_or(&mut fresh);
             depth.clear();
             depth.resize(rows.len(), 0.0);
             id.clear();
             id.resize(rows.len(), 0);
             triangles.clear();
-            let bin = bands.triangles(band).inspect(|t| triangles.push(t));
+            let bin = bands.triangles(band).inspect(|t| triangles.push(*t));
             scan_band(bin, width, top, band_rows, |span, x, y, i, t| {
                 let z0 = t.interpolants(x, y).w;
                 depth_test(
@@ -95,7 +89,9 @@ pub fn draw(
             }
             progress.advance(band_rows as u64);
             Ok(())
-        })
+        });
+    geometry.band_buffers = pool;
+    drawn
 }
 
 /// Shades row `y`, whose pixels were drawn by `triangles[id − 1]` for each of `ids` (0 =
