@@ -259,10 +259,10 @@ fn covers_a_centre(
         // e is an integer, so that is e + 1/2 > 0 or e > 0.
         let e = dx * (cy - vy[a]) - dy * (cx - vx[a]) + (top_left & F32x8::splat(0.5));
         let (right, below) = (dy * step, dx * step);
-        at[0] = at[0] & e.cmp_gt(zero);
-        at[1] = at[1] & (e - right).cmp_gt(zero);
-        at[2] = at[2] & (e + below).cmp_gt(zero);
-        at[3] = at[3] & (e - right + below).cmp_gt(zero);
+        at[0] &= e.cmp_gt(zero);
+        at[1] &= (e - right).cmp_gt(zero);
+        at[2] &= (e + below).cmp_gt(zero);
+        at[3] &= (e - right + below).cmp_gt(zero);
     }
     let mask = |m: F32x8| bytemuck::cast::<_, i32x8>(m);
     let izero = i32x8::splat(0);

@@ -98,14 +98,14 @@ fn small_spans(t: &ScreenTriangle, y0: i32, y1: i32, mut span: impl FnMut(i32, i
             }
             column += 8;
             for k in 0..3 {
-                e[k] = e[k] + per_block[k];
+                e[k] += per_block[k];
             }
         }
         if first >= 0 {
             span(y, t.min_x + first, t.min_x + end);
         }
         for k in 0..3 {
-            row[k] = row[k] + per_row[k];
+            row[k] += per_row[k];
         }
     }
 }
