@@ -1,10 +1,12 @@
 //! The Z-buffer at the editor's preview size (160×96) on the Stanford bunny (69,451 triangles,
 //! ../shared/perf/bunny.toml), Gouraud and Phong, on the default thread count: as the editor
 //! renders it on every key (one renderer kept, so its working memory is reused), and as a
-//! one-off render by a new renderer (as `rastray bench throughput` and vs-peer.sh time it).
+//! one-off render by a new renderer (as `rastray bench throughput` and vs-peer.sh time it); and
+//! with the renderer kept on 1 and on 2 threads, to show what the second thread adds.
 //! Skipped, with a message, where the shared models are not beside the project.
 
 use std::hint::black_box;
+use std::num::NonZeroUsize;
 use std::path::Path;
 use std::sync::Arc;
 use std::time::Duration;
@@ -49,6 +51,20 @@ fn preview(c: &mut Criterion) {
                 black_box(&frame.pixels);
             })
         });
+        for threads in [1, 2] {
+            let mut kept = Renderer::new(RenderOptions {
+                threads: NonZeroUsize::new(threads),
+                ..options
+            });
+            let name = format!("{} kept renderer, {threads} thread(s)", algorithm.name());
+            group.bench_function(name, |b| {
+                b.iter(|| {
+                    kept.render(&world, &scene.camera, &Progress::new(), &mut frame)
+                        .expect("render");
+                    black_box(&frame.pixels);
+                })
+            });
+        }
     }
     group.finish();
 }

@@ -10,6 +10,7 @@ mod projected;
 mod screen_triangle;
 mod setup;
 mod snap;
+mod spans;
 mod varying;
 mod zbuffer;
 

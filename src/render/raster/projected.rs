@@ -7,7 +7,7 @@
 //! the same bits as one set up from its clip-space corners.
 
 use glam::Vec3;
-use wide::{CmpGe, CmpGt, CmpLe, CmpLt, i32x8};
+use wide::{CmpGe, CmpGt, CmpLe, CmpLt, i32x4, i32x8};
 
 use super::snap::{GUARD, SUBPIXEL};
 use crate::render::camera::{NEAR, View};
@@ -26,64 +26,55 @@ pub const OUTSIDE: u32 = BEHIND | PAST_RIGHT | PAST_LEFT | PAST_TOP | PAST_BOTTO
 /// such a vertex is clipped, and the vertex's snapped position is not used.
 pub const NEEDS_CLIP: u32 = 1 << 5;
 
-/// One vertex after the vertex stage.
+/// One vertex after the vertex stage, packed in 16 bytes so that setup reads all it tests of a
+/// vertex with one load.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[repr(C, align(16))]
 pub struct ProjectedVertex {
     /// Pixel coordinates in 1/256 pixel, rounded to nearest (halves away from zero). Only
     /// meaningful without [`NEEDS_CLIP`].
     pub x: i32,
     pub y: i32,
-    /// Clip-space w: the depth along the view direction, world units.
-    pub w: f32,
     /// Outcode bits: [`BEHIND`] … [`NEEDS_CLIP`].
     pub code: u32,
+    /// Clip-space w: the depth along the view direction, world units.
+    pub w: f32,
 }
 
-/// The projected vertices of one mesh, field by field (so that lanes store whole vectors and
-/// setup gathers only what it tests).
+/// The projected vertices of one mesh.
 #[derive(Debug, Clone, Default)]
 pub struct ProjectedVertices {
-    pub x: Vec<i32>,
-    pub y: Vec<i32>,
-    pub w: Vec<f32>,
-    pub code: Vec<u32>,
+    vertices: Vec<ProjectedVertex>,
 }
 
 impl ProjectedVertices {
     /// Vertex `i`.
     #[inline(always)]
     pub fn get(&self, i: usize) -> ProjectedVertex {
-        ProjectedVertex {
-            x: self.x[i],
-            y: self.y[i],
-            w: self.w[i],
-            code: self.code[i],
-        }
+        self.vertices[i]
+    }
+
+    /// Vertex `i` in four lanes: x, y, code and the bits of w.
+    #[inline(always)]
+    pub fn lanes(&self, i: usize) -> i32x4 {
+        let v = &self.vertices[i];
+        i32x4::from([v.x, v.y, v.code as i32, v.w.to_bits() as i32])
     }
 
     /// Makes room for `len` vertices; the values are overwritten by [`project`].
     pub fn resize(&mut self, len: usize) {
-        self.x.resize(len, 0);
-        self.y.resize(len, 0);
-        self.w.resize(len, 0.0);
-        self.code.resize(len, 0);
+        self.vertices.resize(len, ProjectedVertex::default());
     }
 
     /// The vertices as disjoint runs of `len`, each with the index of its first vertex, for
     /// projecting in parallel.
     pub fn runs_mut(&mut self, len: usize) -> impl Iterator<Item = Run<'_>> {
-        self.x
+        self.vertices
             .chunks_mut(len)
-            .zip(self.y.chunks_mut(len))
-            .zip(self.w.chunks_mut(len))
-            .zip(self.code.chunks_mut(len))
             .enumerate()
-            .map(move |(k, (((x, y), w), code))| Run {
+            .map(move |(k, vertices)| Run {
                 first: k * len,
-                x,
-                y,
-                w,
-                code,
+                vertices,
             })
     }
 }
@@ -92,22 +83,19 @@ impl ProjectedVertices {
 pub struct Run<'a> {
     /// Index of the run's first vertex.
     pub first: usize,
-    x: &'a mut [i32],
-    y: &'a mut [i32],
-    w: &'a mut [f32],
-    code: &'a mut [u32],
+    vertices: &'a mut [ProjectedVertex],
 }
 
 impl Run<'_> {
     /// Number of vertices in the run.
     pub fn len(&self) -> usize {
-        self.x.len()
+        self.vertices.len()
     }
 }
 
 /// Projects `positions` (world space) through `view` into `out`, as long.
 pub fn project(view: &View, positions: &[Vec3], out: Run<'_>) {
-    debug_assert_eq!(positions.len(), out.x.len());
+    debug_assert_eq!(positions.len(), out.vertices.len());
     let eye = V3::splat(view.eye);
     let (right, up, forward) = (
         V3::splat(view.right),
@@ -125,13 +113,6 @@ pub fn project(view: &View, positions: &[Vec3], out: Run<'_>) {
         F32x8::splat(GUARD),
         F32x8::splat(SUBPIXEL),
     );
-    let Run {
-        x: out_x,
-        y: out_y,
-        w: out_w,
-        code: out_code,
-        ..
-    } = out;
     for (k, chunk) in positions.chunks(WIDTH).enumerate() {
         // View::to_clip.
         let d = gather(chunk) - eye;
@@ -152,20 +133,19 @@ pub fn project(view: &View, positions: &[Vec3], out: Run<'_>) {
             | bit(cy.cmp_gt(w), PAST_TOP)
             | bit(cy.cmp_lt(-w), PAST_BOTTOM)
             | (!bytemuck::cast::<_, i32x8>(inside) & i32x8::splat(NEEDS_CLIP as i32));
-        let range = k * WIDTH..k * WIDTH + chunk.len();
-        store(&mut out_x[range.clone()], x.to_array());
-        store(&mut out_y[range.clone()], y.to_array());
-        store(&mut out_w[range.clone()], w.to_array());
-        store(&mut out_code[range], bytemuck::cast(code.to_array()));
-    }
-}
-
-/// Stores the first `out.len()` lanes (at most eight) into `out`: eight as one fixed-size copy.
-#[inline(always)]
-fn store<T: Copy>(out: &mut [T], lanes: [T; WIDTH]) {
-    match <&mut [T; WIDTH]>::try_from(&mut *out) {
-        Ok(all) => *all = lanes,
-        Err(_) => out.copy_from_slice(&lanes[..out.len()]),
+        let (x, y, w) = (x.to_array(), y.to_array(), w.to_array());
+        let code: [u32; WIDTH] = bytemuck::cast(code.to_array());
+        let packed: [ProjectedVertex; WIDTH] = std::array::from_fn(|lane| ProjectedVertex {
+            x: x[lane],
+            y: y[lane],
+            code: code[lane],
+            w: w[lane],
+        });
+        let out = &mut out.vertices[k * WIDTH..k * WIDTH + chunk.len()];
+        match <&mut [ProjectedVertex; WIDTH]>::try_from(&mut *out) {
+            Ok(all) => *all = packed,
+            Err(_) => out.copy_from_slice(&packed[..out.len()]),
+        }
     }
 }
 

@@ -9,16 +9,14 @@
 
 use glam::{DVec3, Vec2, Vec3, Vec4};
 
-use wide::{CmpEq, CmpGt, i32x8};
+use wide::{CmpEq, CmpGt, CmpLt, i32x4, i32x8};
+
+use crate::render::simd::F32x8;
 
 use super::projected::{NEEDS_CLIP, OUTSIDE, ProjectedVertices};
 use super::snap::{GUARD, HALF, SUBPIXEL, SUBPIXEL_BITS, edge, first_centre, last_centre, round};
 use crate::render::camera::{NEAR, View};
 use crate::render::simd::WIDTH;
-
-/// Clipping against the near plane and the four guard-band planes turns a triangle into a polygon
-/// of at most 3 + 5 vertices: a fan of at most this many triangles.
-pub const MAX_FAN: usize = 6;
 
 /// A triangle ready for scan conversion: snapped, counter-clockwise in fixed point, with the
 /// screen-space plane of its interpolants.
@@ -27,7 +25,7 @@ pub const MAX_FAN: usize = 6;
 /// `at_ref + per_x·(x − ref_x) + per_y·(y − ref_y)` over pixel centres, and dividing by the
 /// fourth gives the perspective-correct varying. The reference is the pixel holding vertex 0, so
 /// strips of an image evaluate the planes exactly as the whole image does.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 pub struct ScreenTriangle {
     /// Vertex pixel coordinates in 1/256 pixel.
     pub x: [i32; 3],
@@ -174,21 +172,22 @@ pub fn setup_triangle(
 pub fn may_cover(view: &View, projected: &ProjectedVertices, triangles: &[[u32; 3]]) -> u32 {
     debug_assert!((1..=WIDTH).contains(&triangles.len()));
     let last = triangles.len() - 1;
-    let mut x = [[0i32; WIDTH]; 3];
-    let mut y = [[0i32; WIDTH]; 3];
-    let mut code = [[0i32; WIDTH]; 3];
-    for lane in 0..WIDTH {
-        let t = triangles[lane.min(last)];
-        for k in 0..3 {
-            let i = t[k] as usize;
-            x[k][lane] = projected.x[i];
-            y[k][lane] = projected.y[i];
-            code[k][lane] = projected.code[i] as i32;
-        }
-    }
-    let [x0, x1, x2] = x.map(i32x8::from);
-    let [y0, y1, y2] = y.map(i32x8::from);
-    let [c0, c1, c2] = code.map(i32x8::from);
+    // Each corner's eight vertices, four at a time, turned from (x, y, code, w) per vertex
+    // into lanes of x, of y and of codes.
+    let corner = |k: usize| {
+        let half = |first: usize| {
+            let v = std::array::from_fn(|lane| {
+                projected.lanes(triangles[(first + lane).min(last)][k] as usize)
+            });
+            i32x4::transpose(v)
+        };
+        let ([x0, y0, c0, _], [x1, y1, c1, _]) = (half(0), half(4));
+        let join = |a: i32x4, b: i32x4| bytemuck::cast::<[i32x4; 2], i32x8>([a, b]);
+        (join(x0, x1), join(y0, y1), join(c0, c1))
+    };
+    let (x0, y0, c0) = corner(0);
+    let (x1, y1, c1) = corner(1);
+    let (x2, y2, c2) = corner(2);
     let zero = i32x8::splat(0);
     let not_outside = (c0 & c1 & c2 & i32x8::splat(OUTSIDE as i32)).cmp_eq(zero);
     let clipped = !((c0 | c1 | c2) & i32x8::splat(NEEDS_CLIP as i32)).cmp_eq(zero);
@@ -200,8 +199,79 @@ pub fn may_cover(view: &View, projected: &ProjectedVertices, triangles: &[[u32; 
     let min_y = first(y0.min(y1).min(y2)).max(zero);
     let max_y = last_c(y0.max(y1).max(y2)).min(i32x8::splat(view.height as i32 - 1));
     let empty = min_x.cmp_gt(max_x) | min_y.cmp_gt(max_y);
-    let keep = not_outside & (clipped | !empty);
+    // A small triangle whose box holds at most 2×2 centres has them tested exactly, as scan
+    // conversion would: one that covers none of them draws nothing.
+    let extent = |a: i32x8, b: i32x8, c: i32x8| a.max(b).max(c) - a.min(b).min(c);
+    let small = extent(x0, x1, x2).cmp_lt(i32x8::splat(SMALL_EXTENT))
+        & extent(y0, y1, y2).cmp_lt(i32x8::splat(SMALL_EXTENT));
+    let two = i32x8::splat(2);
+    let (columns, rows) = (max_x - min_x, max_y - min_y);
+    let tested = small & columns.cmp_lt(two) & rows.cmp_lt(two) & !clipped & !empty;
+    let covering = if tested.any() {
+        covers_a_centre([x0, x1, x2], [y0, y1, y2], min_x, min_y, columns, rows)
+    } else {
+        zero
+    };
+    let keep = not_outside & (clipped | !empty) & (!tested | covering);
     (keep.move_mask() as u32) & ((1 << triangles.len()) - 1)
+}
+
+/// Vertex extents (fixed point, 8 pixels) below which [`covers_a_centre`] is exact in `f32`:
+/// differences of coordinates are below 2^11, so products below 2^22 and every edge function
+/// value below 2^24 are integers that `f32` holds exactly.
+const SMALL_EXTENT: i32 = 1 << 11;
+
+/// Which of eight triangles (fixed-point vertices `x`, `y`, either orientation, each smaller
+/// than [`SMALL_EXTENT`]) cover a pixel centre among columns `min_x..=min_x + columns` and rows
+/// `min_y..=min_y + rows` (`columns`, `rows` 0 or 1), by the edge functions and top-left rule
+/// that scan conversion uses once the triangle is turned counter-clockwise. A triangle of no
+/// area covers nothing (setup drops it). Lanes of larger triangles give unspecified results.
+#[inline(always)]
+fn covers_a_centre(
+    x: [i32x8; 3],
+    y: [i32x8; 3],
+    min_x: i32x8,
+    min_y: i32x8,
+    columns: i32x8,
+    rows: i32x8,
+) -> i32x8 {
+    let zero = F32x8::splat(0.0);
+    let exact = |v: i32x8| v.round_float();
+    // Coordinates relative to vertex 0, and the first centre's.
+    let (x1, y1) = (exact(x[1] - x[0]), exact(y[1] - y[0]));
+    let (x2, y2) = (exact(x[2] - x[0]), exact(y[2] - y[0]));
+    let cx = exact((min_x << SUBPIXEL_BITS) + i32x8::splat(HALF) - x[0]);
+    let cy = exact((min_y << SUBPIXEL_BITS) + i32x8::splat(HALF) - y[0]);
+    let area = x1 * y2 - y1 * x2;
+    // Clockwise triangles are turned: each edge reversed, its function negated.
+    let sign = area
+        .cmp_lt(zero)
+        .blend(F32x8::splat(-1.0), F32x8::splat(1.0));
+    let vx = [zero, x1, x2];
+    let vy = [zero, y1, y2];
+    let step = F32x8::splat(SUBPIXEL);
+    let mut at = [F32x8::splat(f32::from_bits(u32::MAX)); 4];
+    for k in 0..3 {
+        let (a, b) = ((k + 1) % 3, (k + 2) % 3);
+        let (dx, dy) = ((vx[b] - vx[a]) * sign, (vy[b] - vy[a]) * sign);
+        let top_left = (dy.cmp_eq(zero) & dx.cmp_gt(zero)) | dy.cmp_lt(zero);
+        // A centre is inside the edge where e ≥ 0 on a top or left edge, e > 0 on the others;
+        // e is an integer, so that is e + 1/2 > 0 or e > 0.
+        let e = dx * (cy - vy[a]) - dy * (cx - vx[a]) + (top_left & F32x8::splat(0.5));
+        let (right, below) = (dy * step, dx * step);
+        at[0] &= e.cmp_gt(zero);
+        at[1] &= (e - right).cmp_gt(zero);
+        at[2] &= (e + below).cmp_gt(zero);
+        at[3] &= (e - right + below).cmp_gt(zero);
+    }
+    let mask = |m: F32x8| bytemuck::cast::<_, i32x8>(m);
+    let izero = i32x8::splat(0);
+    let (has_right, has_below) = (columns.cmp_gt(izero), rows.cmp_gt(izero));
+    let covered = mask(at[0])
+        | (mask(at[1]) & has_right)
+        | (mask(at[2]) & has_below)
+        | (mask(at[3]) & has_right & has_below);
+    covered & !mask(area.cmp_eq(zero))
 }
 
 /// Orients a snapped triangle (fixed-point `x`, `y`, clip w, barycentrics on its mesh

@@ -1,14 +1,14 @@
 //! A frame's geometry, from meshes to binned screen triangles: the vertex stage once per distinct
 //! position (a flat-shaded mesh repeats each position per face; the projection is the same),
 //! triangle setup in parallel chunks, the planes of the varying for the triangles that remain,
-//! and bins of rows. Everything lives in a [`RasterScratch`] kept from frame to frame, so a
+//! and bins of rows, each chunk binning its own triangles. Everything lives in a [`RasterScratch`] kept from frame to frame, so a
 //! preview of the same world allocates nothing that grows with the mesh.
 
 use glam::Vec3;
 use rayon::prelude::*;
 
 use super::projected::{ProjectedVertices, project};
-use super::screen_triangle::{Corners, MAX_FAN, ScreenTriangle, may_cover, setup_triangle};
+use super::screen_triangle::{Corners, ScreenTriangle, may_cover, setup_triangle};
 use super::varying::Varying;
 use crate::render::camera::View;
 use crate::render::simd::WIDTH;
@@ -18,11 +18,22 @@ use crate::world::World;
 const VERTEX_CHUNK: usize = 8192;
 /// Triangles per parallel setup task.
 const SETUP_CHUNK: usize = 4096;
-/// Bits of a screen triangle's index within its setup chunk (see [`ScreenTriangles::get`]).
-const INDEX_BITS: u32 = 15;
-const _: () = assert!(SETUP_CHUNK * MAX_FAN < 1 << INDEX_BITS);
-/// Rows per band: the unit of parallel work and of progress.
-pub const BAND_ROWS: u32 = 8;
+/// Pixels a band of rows holds at most, about: its depth and triangle ids (8 bytes a pixel)
+/// then stay in a core's L2 cache while it is drawn.
+const BAND_PIXELS: u32 = 1 << 15;
+/// Bands an image is cut into at least, where rows allow, so that threads share the work.
+const MIN_BANDS: u32 = 16;
+/// Rows a band holds at most.
+const MAX_BAND_ROWS: u32 = 32;
+
+/// Rows per band of a `width`×`height` image, the unit of parallel work and of progress:
+/// bands as tall as [`BAND_PIXELS`] allows, so that a triangle spans few of them, but at least
+/// [`MIN_BANDS`] of them where the image is tall enough.
+pub fn band_rows(width: u32, height: u32) -> u32 {
+    (BAND_PIXELS / width.max(1))
+        .min(height.div_ceil(MIN_BANDS))
+        .clamp(1, MAX_BAND_ROWS)
+}
 
 /// Working memory of the Z-buffer, kept from frame to frame by a renderer.
 #[derive(Debug, Default)]
@@ -40,8 +51,18 @@ pub struct Geometry {
     projected: Vec<ProjectedVertices>,
     /// The setup tasks and their screen triangles.
     chunks: Vec<SetupChunk>,
-    /// Screen triangle ids per band of [`BAND_ROWS`] rows, in triangle order.
-    bins: Vec<Vec<u32>>,
+    /// Depth and triangle buffers of the bands being drawn, one set per render thread.
+    pub(super) band_buffers: Vec<std::sync::Mutex<BandBuffers>>,
+}
+
+/// The buffers a thread draws a band of rows into, kept from frame to frame: at 1920×1080 a
+/// band's are a quarter of a megabyte, which fresh allocations would fault in every frame.
+#[derive(Debug, Default)]
+pub struct BandBuffers {
+    /// 1/w of the nearest surface so far (0 = nothing).
+    pub depth: Vec<f32>,
+    /// Number + 1 in the band's bin of the triangle that drew the pixel (0 = nothing).
+    pub id: Vec<u32>,
 }
 
 /// One setup task: triangles `start..end` of one object, and what they became.
@@ -55,42 +76,52 @@ struct SetupChunk {
     /// Working space for the planes of the varying.
     mesh_triangles: Vec<u32>,
     values: Vec<[Vec3; 3]>,
+    /// The chunk's screen triangles that meet each band of rows, band after band, each band's
+    /// in triangle order: band b's are `binned[bin_starts[b]..bin_starts[b + 1]]`.
+    /// Copies, so that a band reads its triangles in sequence rather than scattered across the
+    /// frame's (at 1920×1080, fetching them scattered took a fifth of the drawing time).
+    binned: Vec<ScreenTriangle>,
+    bin_starts: Vec<u32>,
+    /// Working space of the binning: where each band's next triangle goes.
+    bin_next: Vec<u32>,
 }
 
-/// The screen triangles of a frame, kept in the chunks that set them up in parallel. A
-/// triangle's id is its chunk times 2^[`INDEX_BITS`] plus its index in the chunk; ids increase
-/// in triangle order.
+/// The bands of rows a frame is drawn in, with the screen triangles each one meets.
 #[derive(Debug, Clone, Copy)]
-pub struct ScreenTriangles<'a> {
+pub struct Bands<'a> {
+    /// Rows per band; the last band may hold fewer.
+    pub rows: u32,
     chunks: &'a [SetupChunk],
 }
 
-impl ScreenTriangles<'_> {
-    /// The triangle with id `id`.
-    #[inline(always)]
-    pub fn get(&self, id: u32) -> &ScreenTriangle {
-        &self.chunks[(id >> INDEX_BITS) as usize].triangles[(id & ((1 << INDEX_BITS) - 1)) as usize]
+impl<'a> Bands<'a> {
+    /// The screen triangles that meet band `band`, in triangle order.
+    #[inline]
+    pub fn triangles(&self, band: usize) -> impl Iterator<Item = &'a ScreenTriangle> + use<'a> {
+        self.chunks.iter().flat_map(move |c| {
+            &c.binned[c.bin_starts[band] as usize..c.bin_starts[band + 1] as usize]
+        })
     }
 }
 
 impl Geometry {
     /// Sets up every triangle of `world` seen through `view`, in object then triangle order,
-    /// with the planes of `varying`, and bins them into bands of rows; returns the triangles
-    /// and the bins (screen triangle ids per band of [`BAND_ROWS`] rows, in triangle order).
-    pub fn set_up(
-        &mut self,
-        world: &World,
-        view: &View,
-        varying: &mut dyn Varying,
-    ) -> (ScreenTriangles<'_>, &[Vec<u32>]) {
+    /// with the planes of `varying`, and bins them into bands of rows; returns the bands.
+    pub fn set_up(&mut self, world: &World, view: &View, varying: &mut dyn Varying) -> Bands<'_> {
         self.project(world, view);
         self.plan_chunks(world);
+        let rows = band_rows(view.width, view.height);
+        let bands = view.height.div_ceil(rows) as usize;
         let projected = &self.projected;
         self.chunks.par_iter_mut().for_each(|chunk| {
             let unique = &world.objects[chunk.object].unique;
             let projected = &projected[chunk.object];
             chunk.triangles.clear();
             chunk.corners.clear();
+            // Room for every triangle at once: growing by doubling would copy and fault in
+            // twice the memory.
+            chunk.triangles.reserve(chunk.end - chunk.start);
+            chunk.corners.reserve(chunk.end - chunk.start);
             for first in (chunk.start..chunk.end).step_by(WIDTH) {
                 let group = &unique.triangles[first..(first + WIDTH).min(chunk.end)];
                 let mut lanes = may_cover(view, projected, group);
@@ -131,14 +162,12 @@ impl Geometry {
             {
                 t.set_varying(corners, *values);
             }
+            chunk.bin(rows, bands);
         });
-        self.bin(view.height);
-        (
-            ScreenTriangles {
-                chunks: &self.chunks,
-            },
-            &self.bins,
-        )
+        Bands {
+            rows,
+            chunks: &self.chunks,
+        }
     }
 
     /// The vertex stage: every distinct position of every object projected once.
@@ -175,20 +204,36 @@ impl Geometry {
         }
         self.chunks.truncate(n);
     }
+}
 
-    /// Bins the screen triangles into bands of [`BAND_ROWS`] rows of an image `height` rows
-    /// tall, in triangle order.
-    fn bin(&mut self, height: u32) {
-        let bands = height.div_ceil(BAND_ROWS) as usize;
-        self.bins.resize_with(bands, Vec::new);
-        self.bins.truncate(bands);
-        self.bins.iter_mut().for_each(Vec::clear);
-        for (c, chunk) in self.chunks.iter().enumerate() {
-            let first = (c as u32) << INDEX_BITS;
-            for (i, t) in chunk.triangles.iter().enumerate() {
-                for band in (t.min_y as u32 / BAND_ROWS)..=(t.max_y as u32 / BAND_ROWS) {
-                    self.bins[band as usize].push(first + i as u32);
-                }
+impl SetupChunk {
+    /// Bins the chunk's screen triangles into `bands` bands of `rows` rows, in triangle order.
+    fn bin(&mut self, rows: u32, bands: usize) {
+        let reach = |t: &ScreenTriangle| {
+            (t.min_y as u32 / rows) as usize..=(t.max_y as u32 / rows) as usize
+        };
+        // A counting sort: how many triangles each band gets, where each band's run starts,
+        // then each triangle copied into its bands' runs.
+        self.bin_starts.clear();
+        self.bin_starts.resize(bands + 1, 0);
+        for t in &self.triangles {
+            for band in reach(t) {
+                self.bin_starts[band + 1] += 1;
+            }
+        }
+        for b in 0..bands {
+            self.bin_starts[b + 1] += self.bin_starts[b];
+        }
+        self.binned.clear();
+        self.binned
+            .resize(self.bin_starts[bands] as usize, ScreenTriangle::default());
+        let next = &mut self.bin_next;
+        next.clear();
+        next.extend_from_slice(&self.bin_starts);
+        for t in &self.triangles {
+            for band in reach(t) {
+                self.binned[next[band] as usize] = *t;
+                next[band] += 1;
             }
         }
     }

@@ -19,23 +19,14 @@ use rayon::prelude::*;
 
 use super::fragments::{Fragments, Packer};
 use super::screen_triangle::ScreenTriangle;
-use super::setup::{BAND_ROWS, Geometry, ScreenTriangles};
-use super::snap::{HALF, SUBPIXEL_BITS, edge};
+use super::setup::{BandBuffers, Geometry};
+use super::spans::for_each_span;
 use super::varying::Varying;
 use crate::render::camera::View;
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::simd::{F32x8, WIDTH, load};
 use crate::world::World;
 use wide::{CmpGe, u32x8};
-
-/// Per-band buffers, reused by each worker thread from band to band.
-#[derive(Debug, Default)]
-struct BandBuffers {
-    /// 1/w of the nearest surface so far (0 = nothing).
-    depth: Vec<f32>,
-    /// Number + 1 of the screen triangle that drew the pixel (0 = nothing).
-    id: Vec<u32>,
-}
 
 /// Draws `world` seen through `view` into `out` (`view.width`×`view.height` pixels, every one
 /// written), with `geometry` as working memory. Each band of rows is scan-converted with a
@@ -55,20 +46,30 @@ pub fn draw(
 ) -> Result<(), Cancelled> {
     let width = view.width;
     debug_assert_eq!(out.len(), width as usize * view.height as usize);
-    let (triangles, bins) = geometry.set_up(world, view, varying);
-    out.par_chunks_mut((BAND_ROWS * width) as usize)
-        .zip(bins.par_iter())
+    let threads = rayon::current_num_threads().max(1);
+    let mut pool = std::mem::take(&mut geometry.band_buffers);
+    pool.resize_with(threads, Default::default);
+    let bands = geometry.set_up(world, view, varying);
+    let drawn = out
+        .par_chunks_mut((bands.rows * width) as usize)
         .enumerate()
-        .try_for_each_init(BandBuffers::default, |buffers, (band, (rows, bin))| {
+        .try_for_each_init(Vec::new, |triangles, (band, rows)| {
             progress.check()?;
-            let top = band as u32 * BAND_ROWS;
+            let top = band as u32 * bands.rows;
             let band_rows = rows.len() as u32 / width;
-            let BandBuffers { depth, id } = buffers;
+            let thread = rayon::current_thread_index().unwrap_or(0) % threads;
+            // A thread draws one band at a time, so its buffers are free; were they not, the
+            // band would draw into fresh ones rather than wait.
+            let mut held = pool[thread].try_lock().ok();
+            let mut fresh = BandBuffers::default();
+            let BandBuffers { depth, id } = held.as_deref_mut().unwrap_or(&mut fresh);
             depth.clear();
             depth.resize(rows.len(), 0.0);
             id.clear();
             id.resize(rows.len(), 0);
-            scan_band(triangles, bin, width, top, band_rows, |span, x, y, i, t| {
+            triangles.clear();
+            let bin = bands.triangles(band).inspect(|t| triangles.push(*t));
+            scan_band(bin, width, top, band_rows, |span, x, y, i, t| {
                 let z0 = t.interpolants(x, y).w;
                 depth_test(
                     &mut depth[span.clone()],
@@ -88,14 +89,16 @@ pub fn draw(
             }
             progress.advance(band_rows as u64);
             Ok(())
-        })
+        });
+    geometry.band_buffers = pool;
+    drawn
 }
 
-/// Shades row `y`, whose pixels were drawn by screen triangles `ids` (number + 1; 0 = none):
-/// runs of one triangle go to `shade` as whole spans of eight, the rest packed into lanes.
+/// Shades row `y`, whose pixels were drawn by `triangles[id − 1]` for each of `ids` (0 =
+/// none): runs of one triangle go to `shade` as whole spans of eight, the rest packed in lanes.
 #[inline]
 fn shade_row(
-    triangles: ScreenTriangles<'_>,
+    triangles: &[&ScreenTriangle],
     ids: &[u32],
     y: u32,
     background: Vec3,
@@ -110,7 +113,7 @@ fn shade_row(
         if id == 0 {
             out[x..x + run].fill(background);
         } else {
-            let t = triangles.get(id - 1);
+            let t = triangles[id as usize - 1];
             let at_start = t.interpolants(x as i32, y as i32);
             let whole = run - run % WIDTH;
             for k in (0..whole).step_by(WIDTH) {
@@ -168,30 +171,34 @@ pub fn coverage_counts(world: &World, view: &View) -> Vec<u32> {
     let (width, height) = (view.width, view.height);
     let mut geometry = Geometry::default();
     let mut normals = super::varying::PerVertex::normals(world);
-    let (triangles, bins) = geometry.set_up(world, view, &mut normals);
+    let bands = geometry.set_up(world, view, &mut normals);
     let mut counts = vec![0u32; width as usize * height as usize];
     counts
-        .par_chunks_mut((BAND_ROWS * width) as usize)
-        .zip(bins.par_iter())
+        .par_chunks_mut((bands.rows * width) as usize)
         .enumerate()
-        .for_each(|(band, (rows, bin))| {
-            let top = band as u32 * BAND_ROWS;
+        .for_each(|(band, rows)| {
+            let top = band as u32 * bands.rows;
             let band_rows = rows.len() as u32 / width;
-            scan_band(triangles, bin, width, top, band_rows, |span, _, _, _, _| {
-                rows[span].iter_mut().for_each(|count| *count += 1);
-            });
+            scan_band(
+                bands.triangles(band),
+                width,
+                top,
+                band_rows,
+                |span, _, _, _, _| {
+                    rows[span].iter_mut().for_each(|count| *count += 1);
+                },
+            );
         });
     counts
 }
 
-/// Scan-converts the band's triangles in order, calling `span(pixels, x, y, triangle id,
-/// triangle)` for each run of covered pixel centres: `pixels` indexes the band's own buffers,
-/// and the run starts at pixel (x, y) of the view. Rows `top..top + rows` of a `width`-pixel
-/// image form the band.
+/// Scan-converts the band's triangles `bin` in order, calling `span(pixels, x, y, number,
+/// triangle)` for each run of covered pixel centres, with the triangle's number in `bin`:
+/// `pixels` indexes the band's own buffers, and the run starts at pixel (x, y) of the view. Rows
+/// `top..top + rows` of a `width`-pixel image form the band.
 #[inline]
-fn scan_band(
-    triangles: ScreenTriangles<'_>,
-    bin: &[u32],
+fn scan_band<'a>(
+    bin: impl Iterator<Item = &'a ScreenTriangle>,
     width: u32,
     top: u32,
     rows: u32,
@@ -199,61 +206,18 @@ fn scan_band(
 ) {
     debug_assert!(width > 0);
     let bottom = (top + rows) as i32 - 1;
-    for &i in bin {
-        let t = triangles.get(i);
+    for (i, t) in bin.enumerate() {
         let y0 = t.min_y.max(top as i32);
         let y1 = t.max_y.min(bottom);
-        let (px, py) = (
-            (t.min_x << SUBPIXEL_BITS) + HALF,
-            (y0 << SUBPIXEL_BITS) + HALF,
-        );
-        // Edge k is opposite vertex k: it runs from vertex k+1 to vertex k+2, and its edge
-        // function is vertex k's unnormalised barycentric weight.
-        let mut row_start = [0i64; 3];
-        let mut step_x = [0i64; 3];
-        let mut step_y = [0i64; 3];
-        for k in 0..3 {
-            let (a, b) = ((k + 1) % 3, (k + 2) % 3);
-            let (dx, dy) = (t.x[b] - t.x[a], t.y[b] - t.y[a]);
-            // Top-left rule: a centre exactly on an edge belongs to the triangle only when the
-            // edge is a top edge (horizontal, interior below) or a left edge (interior to the
-            // right). Other edges get a bias of −1 so that "on the edge" tests as outside.
-            let top_left = (dy == 0 && dx > 0) || dy < 0;
-            let bias = if top_left { 0 } else { -1 };
-            row_start[k] = edge(t.x[a], t.y[a], t.x[b], t.y[b], px, py) + bias;
-            step_x[k] = -(dy as i64) << SUBPIXEL_BITS;
-            step_y[k] = (dx as i64) << SUBPIXEL_BITS;
-        }
-        let columns = (t.max_x - t.min_x) as i64;
-        for y in y0..=y1 {
-            // The covered span of this row, solved from the three edge functions (each is
-            // linear in x): the centres where all three are ≥ 0.
-            let (mut lo, mut hi) = (0i64, columns);
-            for k in 0..3 {
-                let (e, s) = (row_start[k], step_x[k]);
-                if s > 0 {
-                    if e < 0 {
-                        lo = lo.max((-e + s - 1) / s);
-                    }
-                } else if s < 0 {
-                    hi = if e < 0 { -1 } else { hi.min(e / -s) };
-                } else if e < 0 {
-                    hi = -1;
-                }
-            }
-            if lo <= hi {
-                debug_assert!(
-                    (0..3).all(|k| row_start[k] + lo * step_x[k] >= 0
-                        && row_start[k] + hi * step_x[k] >= 0),
-                    "span solved wrongly"
-                );
-                let x = t.min_x + lo as i32;
-                let start = (y as u32 - top) as usize * width as usize + x as usize;
-                span(start..start + (hi - lo) as usize + 1, x, y, i, t);
-            }
-            for k in 0..3 {
-                row_start[k] += step_y[k];
-            }
-        }
+        for_each_span(t, y0, y1, |y, first, last| {
+            let start = (y as u32 - top) as usize * width as usize + first as usize;
+            span(
+                start..start + (last - first) as usize + 1,
+                first,
+                y,
+                i as u32,
+                t,
+            );
+        });
     }
 }
