@@ -15,8 +15,8 @@ use glam::Vec3A;
 use rayon::prelude::*;
 
 use super::bvh::{Bvh, Inner, MAX_TREE_DEPTH, Node};
-use super::bvh_prims::{Extent, Prim, partition};
-use super::bvh_sah::Binning;
+use super::bvh_prims::{Extent, PartitionScratch, Prim, partition, partition_scan};
+use super::bvh_sah::{BinScratch, Binning};
 use super::intersect::Triangle;
 use crate::mesh::Mesh;
 use crate::render::progress::{Cancelled, Progress};
@@ -130,14 +130,15 @@ fn build_runs(
     if n < PARALLEL_MIN {
         // At most n − 1 inner nodes: the run never reallocates.
         let mut run = Vec::with_capacity(n.saturating_sub(1));
-        let (node, depth) = build_node(prims, extent, first, depth, &mut run);
+        let mut scratch = Scratch::new();
+        let (node, depth) = build_node(prims, extent, first, depth, &mut run, &mut scratch);
         return Subtree {
             node,
             runs: vec![run],
             depth,
         };
     }
-    let Some(split) = split_node(prims, &extent, depth) else {
+    let Some(split) = split_node(prims, &extent, depth, &mut Scratch::large()) else {
         return Subtree {
             node: leaf(&extent, first, n),
             runs: Vec::new(),
@@ -177,9 +178,10 @@ fn build_node(
     first: usize,
     depth: usize,
     run: &mut Vec<Inner>,
+    scratch: &mut Scratch,
 ) -> (Node, usize) {
     let n = prims.len();
-    let Some(split) = split_node(prims, &extent, depth) else {
+    let Some(split) = split_node(prims, &extent, depth, scratch) else {
         return (leaf(&extent, first, n), 1);
     };
     let at = run.len();
@@ -187,8 +189,15 @@ fn build_node(
         children: [Node::new(glam::Vec3::ZERO, glam::Vec3::ZERO, 0, 0); 2],
     });
     let (left, right) = prims.split_at_mut(split.mid);
-    let (l, l_depth) = build_node(left, split.left, first, depth + 1, run);
-    let (r, r_depth) = build_node(right, split.right, first + split.mid, depth + 1, run);
+    let (l, l_depth) = build_node(left, split.left, first, depth + 1, run, scratch);
+    let (r, r_depth) = build_node(
+        right,
+        split.right,
+        first + split.mid,
+        depth + 1,
+        run,
+        scratch,
+    );
     run[at] = Inner { children: [l, r] };
     (inner(&extent, at), 1 + l_depth.max(r_depth))
 }
@@ -203,6 +212,30 @@ fn inner(extent: &Extent, index: usize) -> Node {
     Node::new(b.lo3(), b.hi3(), index as u32, 0)
 }
 
+/// Working memory a thread keeps from node to node.
+struct Scratch {
+    bins: BinScratch,
+    /// For the partition without branches; `None` for the few nodes at the top, which are
+    /// too large to give each its own (they partition with the swapping scan).
+    partition: Option<PartitionScratch>,
+}
+
+impl Scratch {
+    fn new() -> Scratch {
+        Scratch {
+            bins: BinScratch::new(),
+            partition: Some(PartitionScratch::default()),
+        }
+    }
+
+    fn large() -> Scratch {
+        Scratch {
+            bins: BinScratch::new(),
+            partition: None,
+        }
+    }
+}
+
 /// A node split in two: the size of its left part and the parts' extents.
 struct Parted {
     mid: usize,
@@ -212,16 +245,27 @@ struct Parted {
 
 /// Splits the node over `prims` (whose extent is `extent`, at `depth`), partitioning `prims`;
 /// `None` when it should be a leaf.
-fn split_node(prims: &mut [Prim], extent: &Extent, depth: usize) -> Option<Parted> {
+fn split_node(
+    prims: &mut [Prim],
+    extent: &Extent,
+    depth: usize,
+    scratch: &mut Scratch,
+) -> Option<Parted> {
     let n = prims.len();
     if n <= 2 || depth + 1 >= MAX_TREE_DEPTH {
         return None;
     }
     let binning = Binning::new(&extent.centroids, n);
-    let split = binning.best_split(&binning.fill(prims), extent.bounds.half_area());
+    let split = binning.best_split(
+        binning.fill(prims, &mut scratch.bins),
+        extent.bounds.half_area(),
+    );
     match split {
         Some(s) if n > MAX_LEAF || s.cost < n as f32 => {
-            let (mid, left, right) = partition(prims, s.side);
+            let (mid, left, right) = match &mut scratch.partition {
+                Some(memory) => partition(prims, s.side, memory),
+                None => partition_scan(prims, s.side),
+            };
             Some(Parted {
                 mid,
                 left: Extent {

@@ -52,6 +52,24 @@ impl AxisBins {
 #[derive(Debug, Clone, Copy)]
 pub struct Bins([AxisBins; 3]);
 
+/// Working memory for binning, kept by a thread from node to node: two sets of bins (the
+/// result, and a second set that takes every other prim), so that no node pays for clearing
+/// or copying more bins than it uses.
+#[derive(Debug, Clone)]
+pub struct BinScratch {
+    bins: Bins,
+    odd: Bins,
+}
+
+impl BinScratch {
+    pub fn new() -> BinScratch {
+        BinScratch {
+            bins: Bins([AxisBins::EMPTY; 3]),
+            odd: Bins([AxisBins::EMPTY; 3]),
+        }
+    }
+}
+
 /// Maps a centroid to its bin on each axis. Axes without extent put everything in bin 0.
 #[derive(Debug, Clone)]
 pub struct Binning {
@@ -100,44 +118,57 @@ impl Binning {
         f.fast_min(self.top).fast_trunc_int().to_array()
     }
 
-    /// The bins of `prims`.
-    pub fn fill(&self, prims: &[Prim]) -> Bins {
+    /// The bins of `prims`, left in `scratch`.
+    pub fn fill<'s>(&self, prims: &[Prim], scratch: &'s mut BinScratch) -> &'s Bins {
         if prims.len() < PARALLEL_MIN {
-            return self.fill_run(prims);
+            self.fill_run(prims, scratch);
+            return &scratch.bins;
         }
-        prims
+        let merged = prims
             .par_chunks(CHUNK)
-            .map(|run| self.fill_run(run))
-            .reduce(
-                || Bins([AxisBins::EMPTY; 3]),
-                |mut a, b| {
-                    for axis in self.axes.clone() {
-                        a.0[axis].merge(&b.0[axis], self.count);
-                    }
-                    a
-                },
-            )
+            .map(|run| {
+                let mut scratch = Box::new(BinScratch::new());
+                self.fill_run(run, &mut scratch);
+                scratch
+            })
+            .reduce_with(|mut a, b| {
+                for axis in self.axes.clone() {
+                    a.bins.0[axis].merge(&b.bins.0[axis], self.count);
+                }
+                a
+            })
+            .expect("a large node has prims");
+        scratch.bins = merged.bins;
+        &scratch.bins
     }
 
-    /// The bins of `prims`, in this thread. Two sets of bins take alternate prims, so that
-    /// consecutive prims falling into the same bin do not wait on each other's stores.
-    fn fill_run(&self, prims: &[Prim]) -> Bins {
-        let mut even = Bins([AxisBins::EMPTY; 3]);
-        let mut odd = Bins([AxisBins::EMPTY; 3]);
+    /// Clears the bins in use of the axes binned.
+    fn clear(&self, bins: &mut Bins) {
+        for axis in self.axes.clone() {
+            let bins = &mut bins.0[axis];
+            bins.boxes[..self.count].fill(Aabb::EMPTY);
+            bins.counts[..self.count].fill(0);
+        }
+    }
+
+    /// The bins of `prims`, in this thread, into `scratch.bins`. Two sets of bins take
+    /// alternate prims, so that consecutive prims falling into the same bin do not wait on each
+    /// other's stores.
+    fn fill_run(&self, prims: &[Prim], scratch: &mut BinScratch) {
+        self.clear(&mut scratch.bins);
+        self.clear(&mut scratch.odd);
+        let (even, odd) = (&mut scratch.bins, &mut scratch.odd);
         let pairs = prims.chunks_exact(2);
         let rest = pairs.remainder();
         if self.axes.len() == 1 {
+            // One loop per axis: the bin is then a fixed lane, not a trip through memory.
             let axis = self.axes.start;
             let (even, odd) = (&mut even.0[axis], &mut odd.0[axis]);
-            for pair in pairs {
-                let (a, b) = (&pair[0], &pair[1]);
-                even.add(self.bins(a)[axis] as usize, a);
-                odd.add(self.bins(b)[axis] as usize, b);
+            match axis {
+                0 => self.fill_axis::<0>(prims, even, odd),
+                1 => self.fill_axis::<1>(prims, even, odd),
+                _ => self.fill_axis::<2>(prims, even, odd),
             }
-            for p in rest {
-                even.add(self.bins(p)[axis] as usize, p);
-            }
-            even.merge(odd, self.count);
         } else {
             for pair in pairs {
                 let (a, b) = (&pair[0], &pair[1]);
@@ -157,7 +188,26 @@ impl Binning {
                 even.0[axis].merge(&odd.0[axis], self.count);
             }
         }
-        even
+    }
+
+    /// [`Binning::fill_run`] on axis `AXIS` alone, into `even` (with `odd` as the second set).
+    fn fill_axis<const AXIS: usize>(
+        &self,
+        prims: &[Prim],
+        even: &mut AxisBins,
+        odd: &mut AxisBins,
+    ) {
+        let pairs = prims.chunks_exact(2);
+        let rest = pairs.remainder();
+        for pair in pairs {
+            let (a, b) = (&pair[0], &pair[1]);
+            even.add(self.bins(a)[AXIS] as usize, a);
+            odd.add(self.bins(b)[AXIS] as usize, b);
+        }
+        for p in rest {
+            even.add(self.bins(p)[AXIS] as usize, p);
+        }
+        even.merge(odd, self.count);
     }
 
     /// The cheapest split that leaves both sides non-empty, if any. `parent_area` is the
