@@ -179,9 +179,8 @@ impl Binning {
                 }
             }
             for p in rest {
-                let bp = self.bins(p);
-                for axis in 0..3 {
-                    even.0[axis].add(bp[axis] as usize, p);
+                for (bins, &b) in even.0.iter_mut().zip(&self.bins(p)) {
+                    bins.add(b as usize, p);
                 }
             }
             for axis in 0..3 {
