@@ -7,7 +7,6 @@
 //! child first and skips any node that starts beyond the nearest hit found so far.
 
 use glam::{Vec3, Vec3A, Vec4};
-use rayon::prelude::*;
 
 use super::bvh_build;
 use super::half_line::Ray;
@@ -81,12 +80,6 @@ impl Node {
         self.lo.w = f32::from_bits(start);
     }
 
-    /// Sets [`Node::count`].
-    #[inline]
-    pub fn set_count(&mut self, count: u32) {
-        self.hi.w = f32::from_bits(count);
-    }
-
     /// Whether the node holds triangles rather than children.
     #[inline]
     pub fn is_leaf(&self) -> bool {
@@ -139,38 +132,8 @@ impl Bvh {
         bvh_build::build(mesh, progress)
     }
 
-    /// Packs a depth-first node list (inner nodes linking to their second child by offset) into
-    /// the root and [`Inner`] nodes.
-    pub(super) fn pack(flat: &[Node]) -> (Option<Node>, Vec<Inner>) {
-        let mut index = vec![u32::MAX; flat.len()];
-        let mut next = 0;
-        for (i, n) in flat.iter().enumerate() {
-            if !n.is_leaf() {
-                index[i] = next;
-                next += 1;
-            }
-        }
-        let link = |i: usize| {
-            let n = flat[i];
-            if n.is_leaf() {
-                n
-            } else {
-                Node::new(Vec3::from(n.lo()), Vec3::from(n.hi()), index[i], 0)
-            }
-        };
-        let inner = flat
-            .par_iter()
-            .enumerate()
-            .with_min_len(4096)
-            .filter(|(_, n)| !n.is_leaf())
-            .map(|(i, n)| Inner {
-                children: [link(i + 1), link(i + n.start() as usize)],
-            })
-            .collect();
-        ((!flat.is_empty()).then(|| link(0)), inner)
-    }
-
     /// Levels of the tree walked from the root: 1 for a single leaf, 0 when empty.
+    #[cfg(test)]
     pub fn measure_depth(&self) -> usize {
         fn depth_at(bvh: &Bvh, n: &Node) -> usize {
             if n.is_leaf() {

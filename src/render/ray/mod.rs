@@ -5,6 +5,8 @@
 mod accel;
 mod bvh;
 mod bvh_build;
+mod bvh_prims;
+mod bvh_sah;
 mod half_line;
 mod intersect;
 mod packet;

@@ -1,0 +1,271 @@
+//! The binned surface-area heuristic: a node's triangles are sorted by centroid into at most
+//! [`BINS`] bins per axis, and every split between two bins is priced by the expected cost of a
+//! random ray through the node. Only counts, minima and maxima are gathered, so the bins (and the
+//! split chosen) do not depend on the order of the triangles or on how the work is divided.
+
+use glam::Vec3A;
+use rayon::prelude::*;
+use wide::f32x4;
+
+use super::bvh_prims::{Aabb, Prim, Side};
+
+/// Centroid bins per axis.
+pub const BINS: usize = 16;
+/// Cost of visiting a node, relative to one ray/triangle test.
+const TRAVERSAL_COST: f32 = 2.0;
+/// Nodes with fewer triangles bin along their longest centroid axis only: the lower levels
+/// cost a third as much, and the tree's quality is decided mostly near the top.
+const ALL_AXES_MIN: usize = 4 * 1024;
+/// Nodes with at least this many triangles bin in parallel.
+const PARALLEL_MIN: usize = 16 * 1024;
+/// Triangles per parallel binning task.
+const CHUNK: usize = 8 * 1024;
+
+/// The triangle boxes and centroid counts of one axis' bins.
+#[derive(Debug, Clone, Copy)]
+struct AxisBins {
+    boxes: [Aabb; BINS],
+    counts: [u32; BINS],
+}
+
+impl AxisBins {
+    const EMPTY: AxisBins = AxisBins {
+        boxes: [Aabb::EMPTY; BINS],
+        counts: [0; BINS],
+    };
+
+    #[inline]
+    fn add(&mut self, b: usize, p: &Prim) {
+        self.boxes[b].grow(p.lo(), p.hi());
+        self.counts[b] += 1;
+    }
+
+    fn merge(&mut self, other: &AxisBins, used: usize) {
+        for b in 0..used {
+            self.boxes[b] = self.boxes[b].union(other.boxes[b]);
+            self.counts[b] += other.counts[b];
+        }
+    }
+}
+
+/// The bins of the three axes; only the axes binned are filled.
+#[derive(Debug, Clone, Copy)]
+pub struct Bins([AxisBins; 3]);
+
+/// Working memory for binning, kept by a thread from node to node: two sets of bins (the
+/// result, and a second set that takes every other prim), so that no node pays for clearing
+/// or copying more bins than it uses.
+#[derive(Debug, Clone)]
+pub struct BinScratch {
+    bins: Bins,
+    odd: Bins,
+}
+
+impl BinScratch {
+    pub fn new() -> BinScratch {
+        BinScratch {
+            bins: Bins([AxisBins::EMPTY; 3]),
+            odd: Bins([AxisBins::EMPTY; 3]),
+        }
+    }
+}
+
+/// Maps a centroid to its bin on each axis. Axes without extent put everything in bin 0.
+#[derive(Debug, Clone)]
+pub struct Binning {
+    origin: f32x4,
+    scale: f32x4,
+    /// The last bin, as a float: bin indices are clamped to it.
+    top: f32x4,
+    /// Bins in use, 2..=BINS: small nodes use fewer, which keeps their setup cheap.
+    count: usize,
+    /// The axes binned.
+    axes: std::ops::Range<usize>,
+}
+
+impl Binning {
+    /// The binning of a node of `prims` triangles whose centroids span `centroids`.
+    pub fn new(centroids: &Aabb, prims: usize) -> Binning {
+        let count = prims.clamp(2, BINS);
+        let extent = centroids.size();
+        let scale = Vec3A::select(
+            extent.cmpgt(Vec3A::ZERO),
+            Vec3A::splat(count as f32) / extent,
+            Vec3A::ZERO,
+        );
+        let axes = if prims >= ALL_AXES_MIN {
+            0..3
+        } else {
+            let longest = extent.max_position();
+            longest..longest + 1
+        };
+        let mut origin = centroids.lo.to_array();
+        origin[3] = 0.0;
+        Binning {
+            origin: f32x4::from(origin),
+            scale: f32x4::from([scale.x, scale.y, scale.z, 0.0]),
+            top: f32x4::splat((count - 1) as f32),
+            count,
+            axes,
+        }
+    }
+
+    /// The prim's bin on each axis (lane 3 is 0).
+    #[inline]
+    fn bins(&self, p: &Prim) -> [i32; 4] {
+        let f = (p.centroid2() - self.origin) * self.scale;
+        // f ≥ 0 by construction; clamped to the last bin, the truncation is in range.
+        f.fast_min(self.top).fast_trunc_int().to_array()
+    }
+
+    /// The bins of `prims`, left in `scratch`.
+    pub fn fill<'s>(&self, prims: &[Prim], scratch: &'s mut BinScratch) -> &'s Bins {
+        if prims.len() < PARALLEL_MIN {
+            self.fill_run(prims, scratch);
+            return &scratch.bins;
+        }
+        let merged = prims
+            .par_chunks(CHUNK)
+            .map(|run| {
+                let mut scratch = Box::new(BinScratch::new());
+                self.fill_run(run, &mut scratch);
+                scratch
+            })
+            .reduce_with(|mut a, b| {
+                for axis in self.axes.clone() {
+                    a.bins.0[axis].merge(&b.bins.0[axis], self.count);
+                }
+                a
+            })
+            .expect("a large node has prims");
+        scratch.bins = merged.bins;
+        &scratch.bins
+    }
+
+    /// Clears the bins in use of the axes binned.
+    fn clear(&self, bins: &mut Bins) {
+        for axis in self.axes.clone() {
+            let bins = &mut bins.0[axis];
+            bins.boxes[..self.count].fill(Aabb::EMPTY);
+            bins.counts[..self.count].fill(0);
+        }
+    }
+
+    /// The bins of `prims`, in this thread, into `scratch.bins`. Two sets of bins take
+    /// alternate prims, so that consecutive prims falling into the same bin do not wait on each
+    /// other's stores.
+    fn fill_run(&self, prims: &[Prim], scratch: &mut BinScratch) {
+        self.clear(&mut scratch.bins);
+        self.clear(&mut scratch.odd);
+        let (even, odd) = (&mut scratch.bins, &mut scratch.odd);
+        let pairs = prims.chunks_exact(2);
+        let rest = pairs.remainder();
+        if self.axes.len() == 1 {
+            // One loop per axis: the bin is then a fixed lane, not a trip through memory.
+            let axis = self.axes.start;
+            let (even, odd) = (&mut even.0[axis], &mut odd.0[axis]);
+            match axis {
+                0 => self.fill_axis::<0>(prims, even, odd),
+                1 => self.fill_axis::<1>(prims, even, odd),
+                _ => self.fill_axis::<2>(prims, even, odd),
+            }
+        } else {
+            for pair in pairs {
+                let (a, b) = (&pair[0], &pair[1]);
+                let (ba, bb) = (self.bins(a), self.bins(b));
+                for axis in 0..3 {
+                    even.0[axis].add(ba[axis] as usize, a);
+                    odd.0[axis].add(bb[axis] as usize, b);
+                }
+            }
+            for p in rest {
+                for (bins, &b) in even.0.iter_mut().zip(&self.bins(p)) {
+                    bins.add(b as usize, p);
+                }
+            }
+            for axis in 0..3 {
+                even.0[axis].merge(&odd.0[axis], self.count);
+            }
+        }
+    }
+
+    /// [`Binning::fill_run`] on axis `AXIS` alone, into `even` (with `odd` as the second set).
+    fn fill_axis<const AXIS: usize>(
+        &self,
+        prims: &[Prim],
+        even: &mut AxisBins,
+        odd: &mut AxisBins,
+    ) {
+        let pairs = prims.chunks_exact(2);
+        let rest = pairs.remainder();
+        for pair in pairs {
+            let (a, b) = (&pair[0], &pair[1]);
+            even.add(self.bins(a)[AXIS] as usize, a);
+            odd.add(self.bins(b)[AXIS] as usize, b);
+        }
+        for p in rest {
+            even.add(self.bins(p)[AXIS] as usize, p);
+        }
+        even.merge(odd, self.count);
+    }
+
+    /// The cheapest split that leaves both sides non-empty, if any. `parent_area` is the
+    /// node's [`Aabb::half_area`].
+    pub fn best_split(&self, bins: &Bins, parent_area: f32) -> Option<Split> {
+        let used = self.count;
+        let mut best: Option<(usize, usize, f32)> = None;
+        for axis in self.axes.clone() {
+            let bins = &bins.0[axis];
+            // Sweep from the right: area × count of bins b.. for each b.
+            let mut right_cost = [0f32; BINS];
+            let mut right_count = [0u32; BINS];
+            let (mut acc, mut count) = (Aabb::EMPTY, 0);
+            for b in (1..used).rev() {
+                acc = acc.union(bins.boxes[b]);
+                count += bins.counts[b];
+                right_cost[b] = acc.half_area() * count as f32;
+                right_count[b] = count;
+            }
+            let (mut acc, mut count) = (Aabb::EMPTY, 0);
+            for b in 0..used - 1 {
+                acc = acc.union(bins.boxes[b]);
+                count += bins.counts[b];
+                if count == 0 || right_count[b + 1] == 0 {
+                    continue;
+                }
+                let cost = TRAVERSAL_COST
+                    + (acc.half_area() * count as f32 + right_cost[b + 1])
+                        / parent_area.max(f32::MIN_POSITIVE);
+                if best.is_none_or(|(_, _, c)| cost < c) {
+                    best = Some((axis, b, cost));
+                }
+            }
+        }
+        let (axis, bin, cost) = best?;
+        let boxes = &bins.0[axis].boxes[..used];
+        let union = |bs: &[Aabb]| bs.iter().fold(Aabb::EMPTY, |a, &b| a.union(b));
+        Some(Split {
+            side: Side {
+                axis,
+                origin: self.origin.as_array_ref()[axis],
+                scale: self.scale.as_array_ref()[axis],
+                limit: (bin + 1) as f32,
+            },
+            cost,
+            left: union(&boxes[..=bin]),
+            right: union(&boxes[bin + 1..]),
+        })
+    }
+}
+
+/// A split: the prims on the left of `side` (those whose centroid falls in the bins up to the
+/// split) go left.
+#[derive(Debug, Clone, Copy)]
+pub struct Split {
+    pub side: Side,
+    /// Heuristic cost, in triangle tests.
+    pub cost: f32,
+    /// The triangle boxes of the two sides, from their bins.
+    pub left: Aabb,
+    pub right: Aabb,
+}
