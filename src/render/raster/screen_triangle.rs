@@ -202,8 +202,8 @@ pub fn may_cover(view: &View, projected: &ProjectedVertices, triangles: &[[u32; 
     // A small triangle whose box holds at most 2×2 centres has them tested exactly, as scan
     // conversion would: one that covers none of them draws nothing.
     let extent = |a: i32x8, b: i32x8, c: i32x8| a.max(b).max(c) - a.min(b).min(c);
-    let small = extent(x0, x1, x2).cmp_lt(i32x8::splat(SMALL_EXTENT))
-        & extent(y0, y1, y2).cmp_lt(i32x8::splat(SMALL_EXTENT));
+    let small = extent(x0, x1, x2).cmp_lt(i32x8::splat(EXACT_IN_F32_EXTENT))
+        & extent(y0, y1, y2).cmp_lt(i32x8::splat(EXACT_IN_F32_EXTENT));
     let two = i32x8::splat(2);
     let (columns, rows) = (max_x - min_x, max_y - min_y);
     let tested = small & columns.cmp_lt(two) & rows.cmp_lt(two) & !clipped & !empty;
@@ -219,10 +219,10 @@ pub fn may_cover(view: &View, projected: &ProjectedVertices, triangles: &[[u32; 
 /// Vertex extents (fixed point, 8 pixels) below which [`covers_a_centre`] is exact in `f32`:
 /// differences of coordinates are below 2^11, so products below 2^22 and every edge function
 /// value below 2^24 are integers that `f32` holds exactly.
-const SMALL_EXTENT: i32 = 1 << 11;
+const EXACT_IN_F32_EXTENT: i32 = 1 << 11;
 
 /// Which of eight triangles (fixed-point vertices `x`, `y`, either orientation, each smaller
-/// than [`SMALL_EXTENT`]) cover a pixel centre among columns `min_x..=min_x + columns` and rows
+/// than [`EXACT_IN_F32_EXTENT`]) cover a pixel centre among columns `min_x..=min_x + columns` and rows
 /// `min_y..=min_y + rows` (`columns`, `rows` 0 or 1), by the edge functions and top-left rule
 /// that scan conversion uses once the triangle is turned counter-clockwise. A triangle of no
 /// area covers nothing (setup drops it). Lanes of larger triangles give unspecified results.

@@ -1,8 +1,9 @@
 //! A frame's geometry, from meshes to binned screen triangles: the vertex stage once per distinct
 //! position (a flat-shaded mesh repeats each position per face; the projection is the same),
 //! triangle setup in parallel chunks, the planes of the varying for the triangles that remain,
-//! and bins of rows, each chunk binning its own triangles. Everything lives in a [`RasterScratch`] kept from frame to frame, so a
-//! preview of the same world allocates nothing that grows with the mesh.
+//! and bins of rows, each chunk binning its own triangles. Everything lives in a
+//! [`RasterScratch`] kept from frame to frame, so a preview of the same world allocates nothing
+//! that grows with the mesh.
 
 use glam::Vec3;
 use rayon::prelude::*;

@@ -15,7 +15,7 @@ use super::snap::{HALF, SUBPIXEL_BITS, edge};
 /// A triangle whose vertices span less than this many fixed-point units (32 pixels) in x and in
 /// y is scanned in `i32` lanes: every edge function value at a centre of its bounding box, or
 /// up to seven columns past it, is below 2·2^13·2^14 = 2^28 in magnitude.
-const SMALL_EXTENT: i32 = 1 << 13;
+const LANE_SPAN_EXTENT: i32 = 1 << 13;
 
 /// One edge of a counter-clockwise screen triangle: its function at the first centre scanned
 /// (top-left bias included) and its change per column and per row, fixed-point products.
@@ -56,19 +56,19 @@ fn edges(t: &ScreenTriangle, y0: i32) -> [Edge; 3] {
 #[inline]
 pub fn for_each_span(t: &ScreenTriangle, y0: i32, y1: i32, span: impl FnMut(i32, i32, i32)) {
     let extent = |v: [i32; 3]| v[0].max(v[1]).max(v[2]) - v[0].min(v[1]).min(v[2]);
-    if extent(t.x) < SMALL_EXTENT && extent(t.y) < SMALL_EXTENT {
+    if extent(t.x) < LANE_SPAN_EXTENT && extent(t.y) < LANE_SPAN_EXTENT {
         small_spans(t, y0, y1, span);
     } else {
         solved_spans(t, y0, y1, span);
     }
 }
 
-/// The spans of a triangle smaller than [`SMALL_EXTENT`]: each row tested eight centres at a
+/// The spans of a triangle smaller than [`LANE_SPAN_EXTENT`]: each row tested eight centres at a
 /// time, in `i32` lanes.
 #[inline(always)]
 fn small_spans(t: &ScreenTriangle, y0: i32, y1: i32, mut span: impl FnMut(i32, i32, i32)) {
     let edges = edges(t, y0);
-    // The values fit in i32 by SMALL_EXTENT.
+    // The values fit in i32 by LANE_SPAN_EXTENT.
     let lanes = i32x8::from([0, 1, 2, 3, 4, 5, 6, 7]);
     let mut row: [i32x8; 3] =
         edges.map(|e| i32x8::splat(e.at_start as i32) + lanes * i32x8::splat(e.per_x as i32));

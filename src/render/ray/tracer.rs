@@ -75,25 +75,13 @@ pub fn trace_into(
             for tile_left in (0..width).step_by(TILE_COLUMNS) {
                 let tile_right = (tile_left + TILE_COLUMNS).min(width);
                 for pair_top in (0..band_height).step_by(PACKET_ROWS) {
-                    // The packet's rows, within the band; the last may be a single row.
-                    let height = (band_height - pair_top).min(PACKET_ROWS);
-                    let top = band_top + pair_top;
                     for left in (tile_left..tile_right).step_by(PACKET_COLUMNS) {
-                        // Lane k is pixel (left + k % 4, top + k / 4); lanes past the image's
-                        // right edge or last row repeat a pixel inside it and are not written.
-                        let column = |k: usize| (left + k % PACKET_COLUMNS).min(width - 1);
-                        let row = |k: usize| (k / PACKET_COLUMNS).min(height - 1);
-                        let real = (0..WIDTH)
-                            .filter(|k| {
-                                left + k % PACKET_COLUMNS < width && k / PACKET_COLUMNS < height
-                            })
-                            .fold(0u32, |lanes, k| lanes | 1 << k);
-                        let pixel =
-                            std::array::from_fn(|k| (column(k) as u32, (top + row(k)) as u32));
-                        let colors = tracer.trace_primary(view, pixel, real, &mut stats);
-                        for k in (0..WIDTH).filter(|k| real & 1 << k != 0) {
-                            rows[(pair_top + row(k)) * width + column(k)] = colors[k];
-                        }
+                        let packet = Packet {
+                            left,
+                            pair_top,
+                            band_top,
+                        };
+                        tracer.trace_packet(view, packet, rows, &mut stats);
                     }
                 }
             }
@@ -101,6 +89,15 @@ pub fn trace_into(
             Ok(stats)
         })
         .try_reduce(RayCounts::default, |a, b| Ok(a + b))
+}
+
+/// A packet of 4×2 pixels within a band of rows: its left column, its top row within the band,
+/// and the band's top row in the image.
+#[derive(Clone, Copy)]
+struct Packet {
+    left: usize,
+    pair_top: usize,
+    band_top: usize,
 }
 
 /// What every ray of one render shares.
@@ -130,6 +127,33 @@ struct Surface {
 }
 
 impl Tracer<'_> {
+    /// Traces the primary rays of `packet` and writes their colours into `rows`, the band's
+    /// pixels (`view.width` to a row). Lane k is pixel (left + k % 4, top + k / 4); lanes past
+    /// the image's right edge or the band's last row repeat a pixel inside it and are not
+    /// written.
+    #[inline(always)]
+    fn trace_packet(&self, view: &View, packet: Packet, rows: &mut [Vec3], stats: &mut RayCounts) {
+        let width = view.width as usize;
+        let Packet {
+            left,
+            pair_top,
+            band_top,
+        } = packet;
+        // The packet's rows within the band; the band's last may leave a single one.
+        let height = (rows.len() / width - pair_top).min(PACKET_ROWS);
+        let column = |k: usize| (left + k % PACKET_COLUMNS).min(width - 1);
+        let row = |k: usize| (k / PACKET_COLUMNS).min(height - 1);
+        let real = (0..WIDTH)
+            .filter(|k| left + k % PACKET_COLUMNS < width && k / PACKET_COLUMNS < height)
+            .fold(0u32, |lanes, k| lanes | 1 << k);
+        let top = band_top + pair_top;
+        let pixel = std::array::from_fn(|k| (column(k) as u32, (top + row(k)) as u32));
+        let colors = self.trace_primary(view, pixel, real, stats);
+        for k in (0..WIDTH).filter(|k| real & 1 << k != 0) {
+            rows[(pair_top + row(k)) * width + column(k)] = colors[k];
+        }
+    }
+
     /// The surface where a ray along `d` hits triangle `triangle` of object `object` at
     /// barycentrics (u, v): position and normal interpolated exactly as the Phong fragment
     /// stage interpolates them.
