@@ -154,6 +154,7 @@ fn throughput_reports_rates_for_a_scene_and_an_obj_model() {
         "reflection",
         "Mrays/s",
         "BVH build",
+        "renderer kept, one-off",
     ] {
         assert!(stdout.contains(needle), "output lacks {needle}: {stdout}");
     }

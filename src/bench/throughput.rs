@@ -6,16 +6,22 @@ use std::time::Duration;
 
 use super::area::total_face_area;
 use super::runner::{summarize, time_render};
-use crate::render::{Algorithm, Frame, RenderError, RenderOptions, RenderStats, Size, View};
-use crate::scene::Scene;
+use crate::render::{
+    Algorithm, Frame, Progress, RenderError, RenderOptions, RenderStats, Renderer, Size, View,
+};
+use crate::scene::{Camera, Scene};
 use crate::world::World;
 
 /// One Z-buffer shading on one scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RasterRate {
     pub algorithm: Algorithm,
-    /// Median render time.
+    /// Median render time by one renderer kept from render to render, as the editor's preview
+    /// keeps it: its working memory (band buffers, setup vectors) is reused.
     pub time: Duration,
+    /// Median render time by a new renderer each time, as a one-off `rastray render` does: it
+    /// also allocates and faults in that working memory.
+    pub one_off: Duration,
     /// Triangles drawn.
     pub triangles: usize,
     /// Image pixels.
@@ -121,8 +127,10 @@ pub struct Throughput {
     pub ray: RayRate,
 }
 
-/// Measures `world`, built from `scene`, at `size`, `reps` renders each (median kept). Every
-/// render is a one-off: the ray tracer builds its BVH each time (timed apart from tracing).
+/// Measures `world`, built from `scene`, at `size`, `reps` renders each (median kept). The
+/// Z-buffer is timed twice: by one renderer kept for all its renders (the editor's steady state)
+/// and by a new renderer per render. Every ray-traced render is a one-off: the ray tracer builds
+/// its BVH each time (timed apart from tracing).
 pub fn measure(
     scene: &Scene,
     world: &Arc<World>,
@@ -135,15 +143,18 @@ pub fn measure(
     let mut frame = Frame::default();
     for algorithm in [Algorithm::Gouraud, Algorithm::Phong] {
         let options = RenderOptions::new(algorithm, size.width, size.height);
-        let runs = (0..reps.max(1))
+        let mut kept = Renderer::new(options);
+        let kept_runs = (0..reps.max(1))
+            .map(|_| time_kept_render(&mut kept, world, &scene.camera, &mut frame))
+            .collect::<Result<Vec<_>, _>>()?;
+        let one_off_runs = (0..reps.max(1))
             .map(|_| time_render(world, &scene.camera, &options, &mut frame))
             .collect::<Result<Vec<_>, _>>()?;
-        let times: Vec<Duration> = runs.iter().map(RenderStats::total).collect();
-        let (median_ms, _, _) = summarize(&times);
         raster.push(RasterRate {
             algorithm,
-            time: Duration::from_secs_f64(median_ms / 1e3),
-            triangles: runs[0].triangles,
+            time: median_total(&kept_runs),
+            one_off: median_total(&one_off_runs),
+            triangles: kept_runs[0].triangles,
             pixels: size.width as u64 * size.height as u64,
             face_area,
         });
@@ -177,4 +188,23 @@ pub fn measure(
         with_shadows,
     };
     Ok(Throughput { size, raster, ray })
+}
+
+/// The median of the renders' total times. `runs` must not be empty.
+fn median_total(runs: &[RenderStats]) -> Duration {
+    let times: Vec<Duration> = runs.iter().map(RenderStats::total).collect();
+    let (median_ms, _, _) = summarize(&times);
+    Duration::from_secs_f64(median_ms / 1e3)
+}
+
+/// One render by `renderer`, kept from render to render, into `frame`.
+fn time_kept_render(
+    renderer: &mut Renderer,
+    world: &Arc<World>,
+    camera: &Camera,
+    frame: &mut Frame,
+) -> Result<RenderStats, RenderError> {
+    let stats = renderer.render(world, camera, &Progress::new(), frame)?;
+    std::hint::black_box(&frame.pixels);
+    Ok(stats)
 }

@@ -149,12 +149,14 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
     );
     for r in &t.raster {
         println!(
-            "{:8} {:>9} ms  {:>8} Mtriangles/s  {:>8} Mpixels/s  ({} Mpx/s of face area)",
+            "{:8} {:>9} ms  {:>8} Mtriangles/s  {:>8} Mpixels/s  ({} Mpx/s of face area; \
+             renderer kept, one-off {} ms)",
             r.algorithm.name(),
             number(r.time.as_secs_f64() * 1e3),
             number(r.mtriangles_per_s()),
             number(r.mpixels_per_s()),
-            number(r.mfragments_per_s())
+            number(r.mfragments_per_s()),
+            number(r.one_off.as_secs_f64() * 1e3)
         );
     }
     let ray = &t.ray;
