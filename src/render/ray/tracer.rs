@@ -5,7 +5,8 @@
 //! Primary rays go in packets of 4×2 neighbouring pixels: traced through the BVH together and
 //! lit together, eight lanes at a time. Their shadow rays toward each light start from eight
 //! neighbouring points and end at one, so they go as a packet too, each lane stopping at its
-//! first blocker. Reflection rays, which scatter, go one by one. Bands of rows are traced in
+//! first blocker. The rays a packet reflects go on as a packet (lanes that hit no mirror sit
+//! out), lit the same way, down to the depth limit; a few stragglers go one by one. Bands of rows are traced in
 //! parallel, tile by tile; every pixel depends only on its own rays, so the image is the same for
 //! any number of threads.
 
@@ -14,6 +15,7 @@ use rayon::prelude::*;
 
 use super::accel::SceneAccel;
 use super::half_line::Ray;
+use super::packet::RayPacket;
 use super::primary::primary_packet;
 use crate::mesh::Mesh;
 use crate::render::camera::View;
@@ -39,6 +41,9 @@ const PACKET_ROWS: usize = WIDTH / PACKET_COLUMNS;
 const TILE_COLUMNS: usize = 32;
 /// … by this many rows (a multiple of [`PACKET_ROWS`]); a band of this many rows is one task.
 const TILE_ROWS: usize = 8;
+/// Reflected rays of one packet go as a packet of their own from this many lanes up, and one
+/// by one below it, where a packet walk costs more than the few rays it carries.
+const MIN_REFLECTION_PACKET: u32 = 3;
 
 /// Traces `world` through `view` into `out` (`view.width`×`view.height` pixels), with an
 /// acceleration structure built from `world`; returns the rays cast.
@@ -50,18 +55,7 @@ pub fn trace_into(
     progress: &Progress,
     out: &mut [Vec3],
 ) -> Result<RayCounts, Cancelled> {
-    debug_assert_eq!(accel.objects.len(), world.objects.len());
-    let tracer = Tracer {
-        world,
-        accel,
-        lighting: Lighting::new(world),
-        materials: ObjectMaterials::new(world),
-        shadows: options.shadows,
-        max_depth: options
-            .max_depth
-            .unwrap_or(world.max_depth)
-            .min(MAX_REFLECTION_DEPTH),
-    };
+    let tracer = Tracer::new(accel, world, options);
     let width = view.width as usize;
     debug_assert_eq!(out.len(), width * view.height as usize);
     out.par_chunks_mut(width * TILE_ROWS)
@@ -101,7 +95,7 @@ struct Packet {
 }
 
 /// What every ray of one render shares.
-struct Tracer<'a> {
+pub(super) struct Tracer<'a> {
     world: &'a World,
     accel: &'a SceneAccel,
     lighting: Lighting<'a>,
@@ -126,7 +120,23 @@ struct Surface {
     origin: Vec3,
 }
 
-impl Tracer<'_> {
+impl<'a> Tracer<'a> {
+    /// What rays traced through `world` with `options` share; `accel` was built from `world`.
+    pub(super) fn new(accel: &'a SceneAccel, world: &'a World, options: &RenderOptions) -> Self {
+        debug_assert_eq!(accel.objects.len(), world.objects.len());
+        Tracer {
+            world,
+            accel,
+            lighting: Lighting::new(world),
+            materials: ObjectMaterials::new(world),
+            shadows: options.shadows,
+            max_depth: options
+                .max_depth
+                .unwrap_or(world.max_depth)
+                .min(MAX_REFLECTION_DEPTH),
+        }
+    }
+
     /// Traces the primary rays of `packet` and writes their colours into `rows`, the band's
     /// pixels (`view.width` to a row). Lane k is pixel (left + k % 4, top + k / 4); lanes past
     /// the image's right edge or the band's last row repeat a pixel inside it and are not
@@ -210,11 +220,23 @@ impl Tracer<'_> {
     ) -> [Vec3; WIDTH] {
         let x = F32x8::from(pixel.map(|(i, _)| i as f32 + 0.5));
         let y = F32x8::from(pixel.map(|(_, j)| j as f32 + 0.5));
-        let packet = primary_packet(view, x, y);
-        let dir = packet.dir;
         stats.primary += real.count_ones() as u64;
-        let hits = self.accel.intersect_packet(&packet);
-        let hit_lanes = hits.hit().move_mask() as u32 & real;
+        self.trace_lanes(&primary_packet(view, x, y), real, 0, stats)
+    }
+
+    /// Colour seen along each ray of `packet` whose bit is set in `lanes`, the others left as
+    /// the background; `depth` counts reflections so far. Each lane gets the bits its ray would
+    /// get alone from [`Tracer::trace`].
+    pub(super) fn trace_lanes(
+        &self,
+        packet: &RayPacket,
+        lanes: u32,
+        depth: u32,
+        stats: &mut RayCounts,
+    ) -> [Vec3; WIDTH] {
+        let dir = packet.dir;
+        let hits = self.accel.intersect_packet(packet);
+        let hit_lanes = hits.hit().move_mask() as u32 & lanes;
         let Some(first) = (0..WIDTH).find(|&k| hit_lanes & 1 << k != 0) else {
             return [self.world.background; WIDTH];
         };
@@ -222,23 +244,20 @@ impl Tracer<'_> {
         // finite values; their colour is the background.
         let source = |k: usize| if hit_lanes & 1 << k != 0 { k } else { first };
         let (objects, triangles) = (hits.object.to_array(), hits.triangle.to_array());
+        let objects: [u32; WIDTH] = std::array::from_fn(|k| objects[source(k)]);
         let (u, v) = (hits.u.to_array(), hits.v.to_array());
         let dirs = dir.to_vec3s();
         // Each stage for all lanes before the next, so that the lanes' loads from the meshes,
         // which miss the cache on large meshes, overlap rather than wait one after another.
-        let corner_indices: [[u32; 3]; WIDTH] = std::array::from_fn(|k| {
-            let s = source(k);
-            self.mesh(objects[s]).triangles[triangles[s] as usize]
-        });
+        let corner_indices: [[u32; 3]; WIDTH] =
+            std::array::from_fn(|k| self.mesh(objects[k]).triangles[triangles[source(k)] as usize]);
         let corners: [Corners; WIDTH] =
-            std::array::from_fn(|k| self.corners(objects[source(k)], corner_indices[k]));
+            std::array::from_fn(|k| self.corners(objects[k], corner_indices[k]));
         let surfaces: [Surface; WIDTH] = std::array::from_fn(|k| {
             let s = source(k);
             self.surface_at(&corners[k], u[s], v[s], dirs[k])
         });
-        let material = self
-            .materials
-            .of_lanes(&std::array::from_fn(|k| objects[source(k)]));
+        let material = self.materials.of_lanes(&objects);
         let p = V3::gather(&surfaces.each_ref().map(|s| s.p));
         let n = V3::gather(&surfaces.each_ref().map(|s| s.n));
         let origins = V3::gather(&surfaces.each_ref().map(|s| s.origin));
@@ -253,17 +272,65 @@ impl Tracer<'_> {
                 wanted & !self.accel.occluded_packet(origins, light.position, wanted)
             })
             .to_vec3s();
+        let mirrored = self.reflections(&objects, &surfaces, &dirs, hit_lanes, depth, stats);
         std::array::from_fn(|k| {
             if hit_lanes & 1 << k == 0 {
                 return self.world.background;
             }
-            let s = &surfaces[k];
-            lit[k] + self.reflection(objects[k], s, dirs[k], 0, stats)
+            lit[k] + mirrored[k]
         })
     }
 
+    /// What the mirrors hit by the lanes of `hit_lanes` add to each lane (zero where the
+    /// object does not reflect, or at the depth limit): Kr times the colour of the reflected
+    /// ray. The reflected rays go as a packet when enough lanes cast one, else one by one.
+    fn reflections(
+        &self,
+        objects: &[u32; WIDTH],
+        surfaces: &[Surface; WIDTH],
+        dirs: &[Vec3; WIDTH],
+        hit_lanes: u32,
+        depth: u32,
+        stats: &mut RayCounts,
+    ) -> [Vec3; WIDTH] {
+        let mut added = [Vec3::ZERO; WIDTH];
+        if depth >= self.max_depth {
+            return added;
+        }
+        let coefficient = |k: usize| self.world.objects[objects[k] as usize].material.reflection;
+        let mirrors = (0..WIDTH)
+            .filter(|&k| hit_lanes & 1 << k != 0 && coefficient(k) > 0.0)
+            .fold(0u32, |lanes, k| lanes | 1 << k);
+        if mirrors == 0 {
+            return added;
+        }
+        stats.reflection += mirrors.count_ones() as u64;
+        // Lanes without a reflected ray repeat the first one, which keeps the walk short.
+        let first = mirrors.trailing_zeros() as usize;
+        let rays: [Ray; WIDTH] = std::array::from_fn(|k| {
+            let k = if mirrors & 1 << k != 0 { k } else { first };
+            mirror_ray(&surfaces[k], dirs[k])
+        });
+        if mirrors.count_ones() < MIN_REFLECTION_PACKET {
+            for k in (0..WIDTH).filter(|k| mirrors & 1 << k != 0) {
+                added[k] = coefficient(k) * self.trace(&rays[k], 0.0, depth + 1, stats);
+            }
+            return added;
+        }
+        let packet = RayPacket::new(
+            V3::gather(&rays.each_ref().map(|r| Vec3::from(r.origin))),
+            V3::gather(&rays.each_ref().map(|r| Vec3::from(r.dir))),
+            F32x8::ZERO,
+        );
+        let seen = self.trace_lanes(&packet, mirrors, depth + 1, stats);
+        for k in (0..WIDTH).filter(|k| mirrors & 1 << k != 0) {
+            added[k] = coefficient(k) * seen[k];
+        }
+        added
+    }
+
     /// Colour seen along `ray` beyond `t_min`; `depth` counts reflections so far.
-    fn trace(&self, ray: &Ray, t_min: f32, depth: u32, stats: &mut RayCounts) -> Vec3 {
+    pub(super) fn trace(&self, ray: &Ray, t_min: f32, depth: u32, stats: &mut RayCounts) -> Vec3 {
         let Some(hit) = self.accel.intersect(ray, t_min, f32::INFINITY) else {
             return self.world.background;
         };
@@ -300,13 +367,19 @@ impl Tracer<'_> {
         if depth >= self.max_depth || reflection <= 0.0 {
             return Vec3::ZERO;
         }
-        // The shading normal, turned toward the viewer as the lighting function does.
-        let n = if s.n.dot(-d) < 0.0 { -s.n } else { s.n };
-        let r = d - 2.0 * n * d.dot(n);
         stats.reflection += 1;
-        let reflected = Ray::new(s.origin, r.normalize_or(d));
-        reflection * self.trace(&reflected, 0.0, depth + 1, stats)
+        reflection * self.trace(&mirror_ray(s, d), 0.0, depth + 1, stats)
     }
+}
+
+/// The ray reflected at surface `s` hit along unit `d`: from the surface's lifted origin, along
+/// `d` mirrored about the shading normal turned toward the viewer, as the lighting function
+/// turns it.
+#[inline]
+fn mirror_ray(s: &Surface, d: Vec3) -> Ray {
+    let n = if s.n.dot(-d) < 0.0 { -s.n } else { s.n };
+    let r = d - 2.0 * n * d.dot(n);
+    Ray::new(s.origin, r.normalize_or(d))
 }
 
 /// The lanes whose bit is set in `bits`, as a lane mask (all bits set or clear).

@@ -38,11 +38,13 @@ fn brute_nearest(mesh: &Mesh, ray: &Ray, t_max: f32) -> Option<(f32, u32)> {
     best
 }
 
-fn point(range: f32) -> impl Strategy<Value = Vec3> {
+/// A point in the cube [-range, range]³.
+pub(super) fn point(range: f32) -> impl Strategy<Value = Vec3> {
     (-range..range, -range..range, -range..range).prop_map(|(x, y, z)| Vec3::new(x, y, z))
 }
 
-fn direction() -> impl Strategy<Value = Vec3> {
+/// A unit direction.
+pub(super) fn direction() -> impl Strategy<Value = Vec3> {
     point(1.0).prop_filter_map("non-zero", |d| d.try_normalize())
 }
 

@@ -3,3 +3,4 @@
 mod bvh;
 mod bvh_partition;
 mod intersect;
+mod tracer;
