@@ -103,7 +103,7 @@ fn run_length(ids: &[u32], row: usize) -> usize {
 
 /// Shades row `y`, whose pixels were drawn by `triangles[id − 1]` for each of `ids` (0 =
 /// none; [`WIDTH`] ids of the next row follow the row's): runs of one triangle go to `shade` as
-/// whole spans of eight, the rest packed in lanes.
+/// whole spans of eight, the rest of each run packed in lanes.
 #[inline]
 fn shade_row(
     triangles: &[&ScreenTriangle],
@@ -128,10 +128,11 @@ fn shade_row(
             for k in (0..whole).step_by(WIDTH) {
                 shade(&Fragments::span(y, x, k, t.object, at_start, t.per_x), out);
             }
-            for k in whole..run {
-                let interpolants = at_start + t.per_x * k as f32;
-                if packer.push((x + k) as u32, t.object, interpolants) {
-                    shade(&packer.take(y).expect("a full packer"), out);
+            if whole < run {
+                let rest = run - whole;
+                if let Some(full) = packer.push_run(y, x, whole, rest, t.object, at_start, t.per_x)
+                {
+                    shade(&full, out);
                 }
             }
         }
