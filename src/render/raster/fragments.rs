@@ -4,12 +4,13 @@
 //!
 //! A run of pixels drawn by one triangle becomes whole batches by stepping the triangle's planes
 //! eight pixels at a time; the pixels left over (short runs, as on finely tessellated meshes) are
-//! packed lane by lane. Both ways compute pixel k of a run the same way, as
-//! `interpolants(run start) + per_x·k`, so a pixel's value does not depend on how it was batched.
+//! worked out eight lanes at a time too and packed run after run. Both ways compute pixel k of a
+//! run the same way, as `interpolants(run start) + per_x·k`, so a pixel's value does not depend
+//! on how it was batched.
 
 use glam::{Vec3, Vec4};
 
-use crate::render::simd::{F32x8, V3, WIDTH};
+use crate::render::simd::{F32x8, V3, WIDTH, load};
 
 /// Up to [`WIDTH`] covered pixels of one row. Lanes past `count` repeat the last pixel.
 #[derive(Debug, Clone, Copy)]
@@ -99,28 +100,60 @@ impl Fragments {
     }
 }
 
-/// Collects single fragments of one row into lanes.
+/// Collects the short runs of one row into lanes: each run is worked out in eight lanes at once
+/// and stored at the end of the lanes filled so far; lanes past the first eight wait for the next
+/// batch.
 #[derive(Debug, Clone, Default)]
 pub struct Packer {
     count: usize,
-    x: [u32; WIDTH],
-    object: [u32; WIDTH],
+    x: [u32; 2 * WIDTH],
+    object: [u32; 2 * WIDTH],
     /// Interpolants (varying·1/w, 1/w) per lane, component by component.
-    values: [[f32; WIDTH]; 4],
+    values: [[f32; 2 * WIDTH]; 4],
 }
 
 impl Packer {
-    /// Adds the pixel in column `x` of `object` with `interpolants`; true when all lanes are full.
+    /// Adds the pixels `first..first + len` (`len` 1..=[`WIDTH`]) of a run of one triangle of
+    /// `object` that starts in column `run_start` of row `y`, whose interpolants are `at_start`
+    /// at the run's first pixel and change by `per_x` per pixel: pixel k gets
+    /// `at_start + per_x·k`, as in [`Fragments::span`]. Returns the first eight fragments once
+    /// there are eight.
     #[inline]
-    pub fn push(&mut self, x: u32, object: u32, interpolants: Vec4) -> bool {
+    #[allow(clippy::too_many_arguments)]
+    pub fn push_run(
+        &mut self,
+        y: u32,
+        run_start: usize,
+        first: usize,
+        len: usize,
+        object: u32,
+        at_start: Vec4,
+        per_x: Vec4,
+    ) -> Option<Fragments> {
+        debug_assert!((1..=WIDTH).contains(&len));
         let n = self.count;
-        self.x[n] = x;
-        self.object[n] = object;
-        for (c, value) in interpolants.to_array().into_iter().enumerate() {
-            self.values[c][n] = value;
+        let steps = F32x8::splat(first as f32) + lane_numbers();
+        for (c, values) in self.values.iter_mut().enumerate() {
+            let lanes = F32x8::splat(at_start[c]) + F32x8::splat(per_x[c]) * steps;
+            values[n..n + WIDTH].copy_from_slice(&lanes.to_array());
         }
-        self.count += 1;
-        self.count == WIDTH
+        let column = (run_start + first) as u32;
+        for (lane, x) in self.x[n..n + WIDTH].iter_mut().enumerate() {
+            *x = column + lane as u32;
+        }
+        self.object[n..n + WIDTH].fill(object);
+        self.count = n + len;
+        if self.count < WIDTH {
+            return None;
+        }
+        let full = self.first_eight(y, WIDTH);
+        self.count -= WIDTH;
+        for values in &mut self.values {
+            values.copy_within(WIDTH.., 0);
+        }
+        self.x.copy_within(WIDTH.., 0);
+        self.object.copy_within(WIDTH.., 0);
+        Some(full)
     }
 
     /// The fragments collected so far, as lanes of row `y`; `None` when there are none. Empties
@@ -136,13 +169,22 @@ impl Packer {
                 values[n] = values[last];
             }
         }
-        Some(Fragments::from_interpolants(
+        Some(self.first_eight(y, count))
+    }
+
+    /// The first eight lanes as fragments of row `y`, `count` of them pixels.
+    #[inline(always)]
+    fn first_eight(&self, y: u32, count: usize) -> Fragments {
+        let lanes = |values: &[u32; 2 * WIDTH]| -> [u32; WIDTH] {
+            values[..WIDTH].try_into().expect("lanes")
+        };
+        Fragments::from_interpolants(
             y,
             count,
-            self.x,
-            self.object,
-            self.values.map(F32x8::from),
-        ))
+            lanes(&self.x),
+            lanes(&self.object),
+            self.values.each_ref().map(|v| load(v)),
+        )
     }
 }
 
@@ -154,25 +196,43 @@ mod tests {
     use crate::render::simd::WIDTH;
 
     #[test]
-    fn a_span_and_packed_pixels_interpolate_the_same_bits() {
+    fn a_span_and_packed_runs_interpolate_the_same_bits() {
         // Pixel k of a run is `start + per_x·k` whether it arrives in a span of eight or is packed
-        // with other leftovers: the image must not depend on how pixels were batched.
+        // with other short runs: the image must not depend on how pixels were batched.
         let at_start = Vec4::new(0.3, -0.7, 0.11, 0.25);
         let per_x = Vec4::new(1.0e-3, -3.0e-4, 7.0e-5, -1.0e-5);
         let span = Fragments::span(5, 100, 8, 2, at_start, per_x);
         let mut packer = Packer::default();
-        for k in 8..16 {
-            packer.push(100 + k as u32, 2, at_start + per_x * k as f32);
-        }
-        let packed = packer.take(5).expect("eight fragments");
+        assert!(packer.push_run(5, 100, 8, 3, 2, at_start, per_x).is_none());
+        let packed = packer
+            .push_run(5, 100, 11, 5, 2, at_start, per_x)
+            .expect("eight fragments");
         assert_eq!(span.x, packed.x);
-        assert_eq!(span.count, WIDTH);
+        assert_eq!((span.count, packed.count), (WIDTH, WIDTH));
         assert_eq!(span.depth.to_array(), packed.depth.to_array());
         assert_eq!(span.varying.to_vec3s(), packed.varying.to_vec3s());
-        // A partly filled packer repeats its last fragment and says how many are real.
-        packer.push(7, 1, at_start);
-        let one = packer.take(5).expect("one fragment");
-        assert_eq!((one.count, one.x), (1, [7; WIDTH]));
-        assert!(packer.take(5).is_none(), "take empties the packer");
+        // Each lane is the one-pixel sum `start + per_x·k`, divided by its 1/w.
+        for (lane, (depth, varying)) in packed
+            .depth
+            .to_array()
+            .into_iter()
+            .zip(packed.varying.to_vec3s())
+            .enumerate()
+        {
+            let one = at_start + per_x * (8 + lane) as f32;
+            assert_eq!(depth, 1.0 / one.w);
+            assert_eq!(varying, one.truncate() * depth);
+        }
+        // Runs past the eighth lane wait for the next batch; a partly filled packer repeats
+        // its last fragment and says how many are real.
+        packer.push_run(7, 40, 0, 6, 1, at_start, per_x);
+        let full = packer
+            .push_run(7, 50, 2, 4, 3, at_start, per_x)
+            .expect("ten");
+        assert_eq!(full.x, [40, 41, 42, 43, 44, 45, 52, 53]);
+        assert_eq!(full.object, [1, 1, 1, 1, 1, 1, 3, 3]);
+        let rest = packer.take(7).expect("two fragments");
+        assert_eq!((rest.count, rest.x), (2, [54, 55, 55, 55, 55, 55, 55, 55]));
+        assert!(packer.take(7).is_none(), "take empties the packer");
     }
 }

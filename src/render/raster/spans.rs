@@ -2,8 +2,8 @@
 //! where all three edge functions, biased by the top-left rule, are ≥ 0 (a triangle is convex,
 //! so the run is one piece).
 //!
-//! Small triangles (most of a real mesh) test eight centres at a time in `i32` lanes and read
-//! the run off the lane mask: no division. Larger ones solve each row's run from the three
+//! Small triangles (most of a real mesh) test eight centres at a time in `i32` lanes and hand
+//! on the lane masks, which the depth test uses as they are: no division. Larger ones solve each row's run from the three
 //! edge functions in `i64`, one division per edge and row, which their longer rows pay for.
 //! Both accept exactly the centres the exact integer edge functions accept.
 
@@ -53,20 +53,36 @@ fn edges(t: &ScreenTriangle, y0: i32) -> [Edge; 3] {
 
 /// Calls `span(y, first, last)` for each row `y` of `y0..=y1` in which `t` covers pixel centres,
 /// with the first and last covered column (inclusive), top row first.
-#[inline]
+#[cfg(test)]
 pub fn for_each_span(t: &ScreenTriangle, y0: i32, y1: i32, span: impl FnMut(i32, i32, i32)) {
-    let extent = |v: [i32; 3]| v[0].max(v[1]).max(v[2]) - v[0].min(v[1]).min(v[2]);
-    if extent(t.x) < LANE_SPAN_EXTENT && extent(t.y) < LANE_SPAN_EXTENT {
+    if fits_lanes(t) {
         small_spans(t, y0, y1, span);
     } else {
         solved_spans(t, y0, y1, span);
     }
 }
 
-/// The spans of a triangle smaller than [`LANE_SPAN_EXTENT`]: each row tested eight centres at a
+/// Whether `t` is small enough for [`for_each_block`]: its vertices span less than
+/// [`LANE_SPAN_EXTENT`] in x and in y.
+#[inline(always)]
+pub fn fits_lanes(t: &ScreenTriangle) -> bool {
+    let extent = |v: [i32; 3]| v[0].max(v[1]).max(v[2]) - v[0].min(v[1]).min(v[2]);
+    extent(t.x) < LANE_SPAN_EXTENT && extent(t.y) < LANE_SPAN_EXTENT
+}
+
+/// Calls `block(y, first, x, covered)` for each block of eight columns `x..x + 8` of each row
+/// `y` of `y0..=y1` in which the small triangle `t` ([`fits_lanes`]) covers pixel centres:
+/// `covered` has all bits set in the lanes whose centre is covered, and `first` is the row's
+/// first covered column. A row's blocks come left to right, top row first, and start at
+/// `t.min_x`; lanes past `t.max_x` are never covered. Each row is tested eight centres at a
 /// time, in `i32` lanes.
 #[inline(always)]
-fn small_spans(t: &ScreenTriangle, y0: i32, y1: i32, mut span: impl FnMut(i32, i32, i32)) {
+pub fn for_each_block(
+    t: &ScreenTriangle,
+    y0: i32,
+    y1: i32,
+    mut block: impl FnMut(i32, i32, i32, i32x8),
+) {
     let edges = edges(t, y0);
     // The values fit in i32 by LANE_SPAN_EXTENT.
     let lanes = i32x8::from([0, 1, 2, 3, 4, 5, 6, 7]);
@@ -78,20 +94,18 @@ fn small_spans(t: &ScreenTriangle, y0: i32, y1: i32, mut span: impl FnMut(i32, i
     let outside = i32x8::splat(-1);
     for y in y0..=y1 {
         let mut e = row;
-        let (mut first, mut end) = (-1, -1);
+        let mut first = -1;
         let mut column = 0;
         while column <= last {
-            let inside = e[0].cmp_gt(outside) & e[1].cmp_gt(outside) & e[2].cmp_gt(outside);
-            let mut bits = inside.move_mask() as u32;
-            let remaining = last - column + 1;
-            if remaining < 8 {
-                bits &= (1 << remaining) - 1;
-            }
+            let in_box = i32x8::splat(last - column).cmp_gt(lanes - i32x8::splat(1));
+            let inside =
+                e[0].cmp_gt(outside) & e[1].cmp_gt(outside) & e[2].cmp_gt(outside) & in_box;
+            let bits = inside.move_mask() as u32;
             if bits != 0 {
                 if first < 0 {
                     first = column + bits.trailing_zeros() as i32;
                 }
-                end = column + 31 - bits.leading_zeros() as i32;
+                block(y, t.min_x + first, t.min_x + column, inside);
             } else if first >= 0 {
                 // The run has ended: a row of a convex triangle holds one.
                 break;
@@ -101,19 +115,38 @@ fn small_spans(t: &ScreenTriangle, y0: i32, y1: i32, mut span: impl FnMut(i32, i
                 e[k] += per_block[k];
             }
         }
-        if first >= 0 {
-            span(y, t.min_x + first, t.min_x + end);
-        }
         for k in 0..3 {
             row[k] += per_row[k];
         }
     }
 }
 
+/// The spans of a triangle smaller than [`LANE_SPAN_EXTENT`], from its blocks.
+#[cfg(test)]
+fn small_spans(t: &ScreenTriangle, y0: i32, y1: i32, mut span: impl FnMut(i32, i32, i32)) {
+    // The row, first and last covered column of the run being gathered.
+    let mut run: Option<(i32, i32, i32)> = None;
+    for_each_block(t, y0, y1, |y, first, x, covered| {
+        let end = x + 31 - (covered.move_mask() as u32).leading_zeros() as i32;
+        match &mut run {
+            Some((row, _, last)) if *row == y => *last = end,
+            _ => {
+                if let Some((row, first, last)) = run {
+                    span(row, first, last);
+                }
+                run = Some((y, first, end));
+            }
+        }
+    });
+    if let Some((row, first, last)) = run {
+        span(row, first, last);
+    }
+}
+
 /// The spans of any triangle, each row's solved from the three edge functions (each linear in
 /// x): the columns where all three are ≥ 0.
 #[inline(always)]
-fn solved_spans(t: &ScreenTriangle, y0: i32, y1: i32, mut span: impl FnMut(i32, i32, i32)) {
+pub fn solved_spans(t: &ScreenTriangle, y0: i32, y1: i32, mut span: impl FnMut(i32, i32, i32)) {
     let edges = edges(t, y0);
     let mut row_start = edges.map(|e| e.at_start);
     let columns = (t.max_x - t.min_x) as i64;

@@ -12,21 +12,19 @@
 //! Bands run in parallel; each band's result depends only on the triangle order, so the output is
 //! the same for any number of threads.
 
-use std::ops::Range;
-
 use glam::Vec3;
 use rayon::prelude::*;
 
 use super::fragments::{Fragments, Packer};
 use super::screen_triangle::ScreenTriangle;
 use super::setup::{BandBuffers, Geometry};
-use super::spans::for_each_span;
+use super::spans::{fits_lanes, for_each_block, solved_spans};
 use super::varying::Varying;
 use crate::render::camera::View;
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::simd::{F32x8, WIDTH, load};
 use crate::world::World;
-use wide::{CmpGe, u32x8};
+use wide::{CmpEq, CmpGe, i32x8, u32x8};
 
 /// Draws `world` seen through `view` into `out` (`view.width`×`view.height` pixels, every one
 /// written), with `geometry` as working memory. Each band of rows is scan-converted with a
@@ -63,28 +61,19 @@ pub fn draw(
             let mut held = pool[thread].try_lock().ok();
             let mut fresh = BandBuffers::default();
             let BandBuffers { depth, id } = held.as_deref_mut().unwrap_or(&mut fresh);
+            // A block of eight lanes may start at any pixel: the buffers run on past the band.
             depth.clear();
-            depth.resize(rows.len(), 0.0);
+            depth.resize(rows.len() + WIDTH, 0.0);
             id.clear();
-            id.resize(rows.len(), 0);
+            id.resize(rows.len() + WIDTH, 0);
             triangles.clear();
             let bin = bands.triangles(band).inspect(|t| triangles.push(*t));
-            scan_band(bin, width, top, band_rows, |span, x, y, i, t| {
-                let z0 = t.interpolants(x, y).w;
-                depth_test(
-                    &mut depth[span.clone()],
-                    &mut id[span],
-                    z0,
-                    t.per_x.w,
-                    i + 1,
-                );
-            });
-            for (r, (out, ids)) in rows
-                .chunks_mut(width as usize)
-                .zip(id.chunks(width as usize))
-                .enumerate()
-            {
+            scan_band(bin, width, top, band_rows, depth, id);
+            for (r, out) in rows.chunks_mut(width as usize).enumerate() {
                 let y = top + r as u32;
+                let start = r * width as usize;
+                // The row's ids and the next row's (or the padding): runs are found in lanes.
+                let ids = &id[start..start + width as usize + WIDTH];
                 shade_row(triangles, ids, y, world.background, &shade, out);
             }
             progress.advance(band_rows as u64);
@@ -94,8 +83,27 @@ pub fn draw(
     drawn
 }
 
+/// The length of the run of equal ids from `ids[0]` on, within the first `row` ids; `ids`
+/// holds at least [`WIDTH`] more, which are compared eight at a time.
+#[inline(always)]
+fn run_length(ids: &[u32], row: usize) -> usize {
+    let id = i32x8::splat(ids[0] as i32);
+    let mut run = 0;
+    while run < row {
+        let block: [u32; WIDTH] = ids[run..run + WIDTH].try_into().expect("lanes");
+        let same = bytemuck::cast::<_, i32x8>(block).cmp_eq(id).move_mask() as u32;
+        if same != 0xff {
+            run += (!same).trailing_zeros() as usize;
+            break;
+        }
+        run += WIDTH;
+    }
+    run.min(row)
+}
+
 /// Shades row `y`, whose pixels were drawn by `triangles[id − 1]` for each of `ids` (0 =
-/// none): runs of one triangle go to `shade` as whole spans of eight, the rest packed in lanes.
+/// none; [`WIDTH`] ids of the next row follow the row's): runs of one triangle go to `shade` as
+/// whole spans of eight, the rest of each run packed in lanes.
 #[inline]
 fn shade_row(
     triangles: &[&ScreenTriangle],
@@ -107,11 +115,12 @@ fn shade_row(
 ) {
     let mut packer = Packer::default();
     let mut x = 0;
-    while x < ids.len() {
+    let width = out.len();
+    while x < width {
         let id = ids[x];
-        let run = ids[x..].iter().take_while(|&&i| i == id).count();
+        let run = run_length(&ids[x..], width - x);
         if id == 0 {
-            out[x..x + run].fill(background);
+            fill(&mut out[x..x + run], background);
         } else {
             let t = triangles[id as usize - 1];
             let at_start = t.interpolants(x as i32, y as i32);
@@ -119,10 +128,11 @@ fn shade_row(
             for k in (0..whole).step_by(WIDTH) {
                 shade(&Fragments::span(y, x, k, t.object, at_start, t.per_x), out);
             }
-            for k in whole..run {
-                let interpolants = at_start + t.per_x * k as f32;
-                if packer.push((x + k) as u32, t.object, interpolants) {
-                    shade(&packer.take(y).expect("a full packer"), out);
+            if whole < run {
+                let rest = run - whole;
+                if let Some(full) = packer.push_run(y, x, whole, rest, t.object, at_start, t.per_x)
+                {
+                    shade(&full, out);
                 }
             }
         }
@@ -131,6 +141,18 @@ fn shade_row(
     if let Some(rest) = packer.take(y) {
         shade(&rest, out);
     }
+}
+
+/// Fills `pixels` with `color` eight at a time: a pixel is 12 bytes, and filling them one by
+/// one takes two stores each, which at 1920×1080 cost more than the memory writes.
+#[inline]
+fn fill(pixels: &mut [Vec3], color: Vec3) {
+    let eight = [color; WIDTH];
+    let mut blocks = pixels.chunks_exact_mut(WIDTH);
+    for block in &mut blocks {
+        block.copy_from_slice(&eight);
+    }
+    blocks.into_remainder().fill(color);
 }
 
 /// The depth test along one span: pixel k has 1/w = z0 + k·dz; where that is at least the stored
@@ -163,11 +185,26 @@ fn depth_test(depth: &mut [f32], ids: &mut [u32], z0: f32, dz: f32, id: u32) {
     }
 }
 
+/// The depth test on one block of eight pixels starting at `depth[0]`, `ids[0]`: where a lane is
+/// `covered` and its 1/w `z` is at least the stored one, `z` and `id` are stored. Computes what
+/// [`depth_test`] does for the same pixels.
+#[inline(always)]
+fn depth_test_block(depth: &mut [f32], ids: &mut [u32], z: F32x8, covered: i32x8, id: u32) {
+    let (depth, ids) = (&mut depth[..WIDTH], &mut ids[..WIDTH]);
+    let stored = load(depth);
+    let nearer = z.cmp_ge(stored) & bytemuck::cast::<_, F32x8>(covered);
+    depth.copy_from_slice(&nearer.blend(z, stored).to_array());
+    let old: [u32; WIDTH] = (&*ids).try_into().expect("lanes");
+    let kept = bytemuck::cast::<_, u32x8>(nearer).blend(u32x8::splat(id), u32x8::from(old));
+    ids.copy_from_slice(&kept.to_array());
+}
+
 /// How many times each pixel centre is covered by some triangle, with no depth test: a closed
 /// surface seen from outside covers each pixel it projects onto exactly twice (front and back),
 /// a single flat patch exactly once. Used to check the fill rule.
 #[cfg(test)]
 pub fn coverage_counts(world: &World, view: &View) -> Vec<u32> {
+    use super::spans::for_each_span;
     let (width, height) = (view.width, view.height);
     let mut geometry = Geometry::default();
     let mut normals = super::varying::PerVertex::normals(world);
@@ -178,46 +215,70 @@ pub fn coverage_counts(world: &World, view: &View) -> Vec<u32> {
         .enumerate()
         .for_each(|(band, rows)| {
             let top = band as u32 * bands.rows;
-            let band_rows = rows.len() as u32 / width;
-            scan_band(
-                bands.triangles(band),
-                width,
-                top,
-                band_rows,
-                |span, _, _, _, _| {
-                    rows[span].iter_mut().for_each(|count| *count += 1);
-                },
-            );
+            let bottom = top as i32 + (rows.len() as u32 / width) as i32 - 1;
+            for t in bands.triangles(band) {
+                let (y0, y1) = (t.min_y.max(top as i32), t.max_y.min(bottom));
+                for_each_span(t, y0, y1, |y, first, last| {
+                    let start = (y as u32 - top) as usize * width as usize + first as usize;
+                    let pixels = start..=start + (last - first) as usize;
+                    rows[pixels].iter_mut().for_each(|count| *count += 1);
+                });
+            }
         });
     counts
 }
 
-/// Scan-converts the band's triangles `bin` in order, calling `span(pixels, x, y, number,
-/// triangle)` for each run of covered pixel centres, with the triangle's number in `bin`:
-/// `pixels` indexes the band's own buffers, and the run starts at pixel (x, y) of the view. Rows
-/// `top..top + rows` of a `width`-pixel image form the band.
+/// Scan-converts the band's triangles `bin` in order into the band's depth buffer (1/w, 0 =
+/// nothing) and `ids` (the triangle's number in `bin` + 1): rows `top..top + rows` of a
+/// `width`-pixel image, and [`WIDTH`] entries past the band's end. Small triangles are tested
+/// eight pixels at a time and their depth tested in the same lanes; large ones have each row's
+/// span solved, then depth-tested along it. Both compute pixel k of a row's run of covered
+/// centres as 1/w(run start) + k·(1/w per pixel).
 #[inline]
 fn scan_band<'a>(
     bin: impl Iterator<Item = &'a ScreenTriangle>,
     width: u32,
     top: u32,
     rows: u32,
-    mut span: impl FnMut(Range<usize>, i32, i32, u32, &ScreenTriangle),
+    depth: &mut [f32],
+    ids: &mut [u32],
 ) {
     debug_assert!(width > 0);
+    debug_assert!(depth.len() >= (rows * width) as usize + WIDTH);
     let bottom = (top + rows) as i32 - 1;
+    let row_start = |y: i32| (y as u32 - top) as usize * width as usize;
+    let lanes = F32x8::from(std::array::from_fn::<f32, WIDTH, _>(|k| k as f32));
     for (i, t) in bin.enumerate() {
+        let id = i as u32 + 1;
         let y0 = t.min_y.max(top as i32);
         let y1 = t.max_y.min(bottom);
-        for_each_span(t, y0, y1, |y, first, last| {
-            let start = (y as u32 - top) as usize * width as usize + first as usize;
-            span(
-                start..start + (last - first) as usize + 1,
-                first,
-                y,
-                i as u32,
-                t,
-            );
-        });
+        if fits_lanes(t) {
+            let dz = F32x8::splat(t.per_x.w);
+            // 1/w at the first covered centre of row `row`.
+            let (mut row, mut z0) = (-1, F32x8::splat(0.0));
+            for_each_block(t, y0, y1, |y, first, x, covered| {
+                if y != row {
+                    (row, z0) = (y, F32x8::splat(t.interpolants(first, y).w));
+                }
+                // x − first + lane is an exact integer in f32: each lane computes what the
+                // span's depth test would.
+                let z = z0 + dz * (F32x8::splat((x - first) as f32) + lanes);
+                let at = row_start(y) + x as usize;
+                depth_test_block(&mut depth[at..], &mut ids[at..], z, covered, id);
+            });
+        } else {
+            solved_spans(t, y0, y1, |y, first, last| {
+                let start = row_start(y) + first as usize;
+                let pixels = start..=start + (last - first) as usize;
+                let z0 = t.interpolants(first, y).w;
+                depth_test(
+                    &mut depth[pixels.clone()],
+                    &mut ids[pixels],
+                    z0,
+                    t.per_x.w,
+                    id,
+                );
+            });
+        }
     }
 }
