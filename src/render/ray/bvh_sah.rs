@@ -21,7 +21,20 @@ const PARALLEL_MIN: usize = 16 * 1024;
 /// Triangles per parallel binning task.
 const CHUNK: usize = 8 * 1024;
 
+/// Added to a bin's `hi` after each prim: the fourth lane counts the prim, and −0 leaves every
+/// coordinate bit for bit as it is (x + −0 = x for every x, ±0 included).
+const COUNT_ONE: f32x4 = f32x4::new([-0.0, -0.0, -0.0, 1.0]);
+const _: () = assert!(
+    BINS.is_power_of_two(),
+    "bin indices are masked with BINS − 1"
+);
+
 /// The triangle boxes and centroid counts of one axis' bins.
+///
+/// While a run of prims is binned, a bin's count rides in the fourth lane of its box's `hi`
+/// (a prim's `hi` has 0 there, and the empty box −∞): one vector add instead of a second
+/// read-modify-write in memory. [`AxisBins::settle`] moves it into `counts`. A run holds fewer
+/// than 2²⁴ prims, so the float count is exact.
 #[derive(Debug, Clone, Copy)]
 struct AxisBins {
     boxes: [Aabb; BINS],
@@ -34,10 +47,23 @@ impl AxisBins {
         counts: [0; BINS],
     };
 
+    /// Adds `p` to bin `b` (< [`BINS`]), its count in the box's fourth lane.
     #[inline]
     fn add(&mut self, b: usize, p: &Prim) {
-        self.boxes[b].grow(p.lo(), p.hi());
-        self.counts[b] += 1;
+        let bin = &mut self.boxes[b & (BINS - 1)];
+        bin.lo = bin.lo.fast_min(p.lo());
+        bin.hi = bin.hi.fast_max(p.hi()) + COUNT_ONE;
+    }
+
+    /// Joins the bins of a run binned in two sets (`self` and `odd`, counts in their boxes'
+    /// fourth lanes) into `self`, counts in `counts`.
+    fn settle(&mut self, odd: &AxisBins, used: usize) {
+        // An empty bin's lane is −∞, which the saturating cast turns into 0.
+        let count = |b: &Aabb| b.hi.as_array_ref()[3] as u32;
+        for b in 0..used {
+            self.counts[b] = count(&self.boxes[b]) + count(&odd.boxes[b]);
+            self.boxes[b] = self.boxes[b].union(odd.boxes[b]);
+        }
     }
 
     fn merge(&mut self, other: &AxisBins, used: usize) {
@@ -147,7 +173,6 @@ impl Binning {
         for axis in self.axes.clone() {
             let bins = &mut bins.0[axis];
             bins.boxes[..self.count].fill(Aabb::EMPTY);
-            bins.counts[..self.count].fill(0);
         }
     }
 
@@ -184,7 +209,7 @@ impl Binning {
                 }
             }
             for axis in 0..3 {
-                even.0[axis].merge(&odd.0[axis], self.count);
+                even.0[axis].settle(&odd.0[axis], self.count);
             }
         }
     }
@@ -206,7 +231,7 @@ impl Binning {
         for p in rest {
             even.add(self.bins(p)[AXIS] as usize, p);
         }
-        even.merge(odd, self.count);
+        even.settle(odd, self.count);
     }
 
     /// The cheapest split that leaves both sides non-empty, if any. `parent_area` is the
