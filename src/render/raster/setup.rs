@@ -53,7 +53,8 @@ pub struct Geometry {
     /// The setup tasks and their screen triangles.
     chunks: Vec<SetupChunk>,
     /// Screen triangles per object in the last frame set up: what the varying's per-object
-    /// work is planned by (the next frame's camera is usually close to the last's).
+    /// work is planned by (the next frame's camera is usually close to the last's); half of
+    /// each object's triangles before the first.
     survivors: Vec<usize>,
     /// Depth and triangle buffers of the bands being drawn, one set per render thread.
     pub(super) band_buffers: Vec<std::sync::Mutex<BandBuffers>>,
@@ -116,7 +117,13 @@ impl Geometry {
     /// then one pass per setup chunk that tests, sets up, shades the corners of and bins its
     /// triangles. A small frame thus wakes the render threads twice rather than once per stage.
     pub fn set_up(&mut self, world: &World, view: &View, varying: &mut dyn Varying) -> Bands<'_> {
-        self.survivors.resize(world.objects.len(), 0);
+        if self.survivors.len() != world.objects.len() {
+            // No last frame of this world: about half the triangles of a closed mesh face
+            // the camera.
+            self.survivors.clear();
+            self.survivors
+                .extend(world.objects.iter().map(|o| o.mesh.triangles.len() / 2));
+        }
         let (projected, survivors) = (&mut self.projected, &self.survivors);
         rayon::join(
             || project_all(projected, world, view),

@@ -8,8 +8,8 @@ use crate::world::World;
 /// The varying of every vertex of a world's meshes.
 pub trait Varying: Sync + Send {
     /// Called once per frame before any [`Varying::corners`], beside the vertex stage, with the
-    /// number of triangles per object whose corners were asked for in the last frame (zero
-    /// when none was drawn): a varying that is costly per vertex can work out whole objects at
+    /// number of triangles per object whose corners were asked for in the last frame (an
+    /// estimate before the first): a varying that is costly per vertex can work out whole objects at
     /// once where most of their vertices are likely to be needed. The choice changes no value.
     fn prepare(&mut self, _triangles_needed: &[usize]) {}
 
