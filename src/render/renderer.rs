@@ -124,10 +124,7 @@ fn on_pool<R: Send>(
     work: impl FnOnce() -> R + Send,
 ) -> Result<R, RenderError> {
     let Some(threads) = threads.map(|n| n.get()) else {
-        // The whole render runs on one of the global pool's threads, so that each parallel
-        // stage shares its work there rather than being handed over from outside and waited
-        // for: one hand-over per render instead of one per stage.
-        return Ok(rayon::scope(|_| work()));
+        return Ok(work());
     };
     if pool
         .as_ref()

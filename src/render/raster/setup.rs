@@ -52,9 +52,9 @@ pub struct Geometry {
     projected: Vec<ProjectedVertices>,
     /// The setup tasks and their screen triangles.
     chunks: Vec<SetupChunk>,
-    /// Screen triangles per object in the last frame set up: what the varying's per-object
-    /// work is planned by (the next frame's camera is usually close to the last's); half of
-    /// each object's triangles before the first.
+    /// Screen triangles per object in the last frame set up (empty before the first): what
+    /// the varying's per-object work is planned by, the next frame's camera being usually
+    /// close to the last's.
     survivors: Vec<usize>,
     /// Depth and triangle buffers of the bands being drawn, one set per render thread.
     pub(super) band_buffers: Vec<std::sync::Mutex<BandBuffers>>,
@@ -113,34 +113,51 @@ impl Geometry {
     /// Sets up every triangle of `world` seen through `view`, in object then triangle order,
     /// with the planes of `varying`, and bins them into bands of rows; returns the bands.
     ///
-    /// Two parallel passes: the vertex stage (with `varying`'s per-object work beside it),
-    /// then one pass per setup chunk that tests, sets up, shades the corners of and bins its
-    /// triangles. A small frame thus wakes the render threads twice rather than once per stage.
+    /// Once a frame of the world was set up, two parallel passes: the vertex stage (with
+    /// `varying`'s per-object work beside it, planned by the last frame's survivors), then one
+    /// pass per setup chunk that tests, sets up, shades the corners of and bins its triangles.
+    /// A small frame thus wakes the render threads twice rather than once per stage. The first
+    /// frame plans the varying's work by its own survivors, between two passes.
     pub fn set_up(&mut self, world: &World, view: &View, varying: &mut dyn Varying) -> Bands<'_> {
-        if self.survivors.len() != world.objects.len() {
-            // No last frame of this world: about half the triangles of a closed mesh face
-            // the camera.
-            self.survivors.clear();
-            self.survivors
-                .extend(world.objects.iter().map(|o| o.mesh.triangles.len() / 2));
+        let planned = self.survivors.len() == world.objects.len();
+        let projected = &mut self.projected;
+        if planned {
+            let survivors = &self.survivors;
+            rayon::join(
+                || project_all(projected, world, view),
+                || varying.prepare(survivors),
+            );
+        } else {
+            project_all(projected, world, view);
         }
-        let (projected, survivors) = (&mut self.projected, &self.survivors);
-        rayon::join(
-            || project_all(projected, world, view),
-            || varying.prepare(survivors),
-        );
         self.plan_chunks(world);
         let rows = band_rows(view.width, view.height);
         let bands = view.height.div_ceil(rows) as usize;
         let projected = &self.projected;
-        let varying = &*varying;
-        self.chunks.par_iter_mut().for_each(|chunk| {
-            chunk.set_up(world, view, &projected[chunk.object], varying);
-            chunk.bin(rows, bands);
-        });
-        self.survivors.fill(0);
+        if planned {
+            let varying = &*varying;
+            self.chunks.par_iter_mut().for_each(|chunk| {
+                chunk.set_up(world, view, &projected[chunk.object]);
+                chunk.set_varying(varying);
+                chunk.bin(rows, bands);
+            });
+        } else {
+            self.chunks
+                .par_iter_mut()
+                .for_each(|chunk| chunk.set_up(world, view, &projected[chunk.object]));
+        }
+        self.survivors.clear();
+        self.survivors.resize(world.objects.len(), 0);
         for chunk in &self.chunks {
             self.survivors[chunk.object] += chunk.triangles.len();
+        }
+        if !planned {
+            varying.prepare(&self.survivors);
+            let varying = &*varying;
+            self.chunks.par_iter_mut().for_each(|chunk| {
+                chunk.set_varying(varying);
+                chunk.bin(rows, bands);
+            });
         }
         Bands {
             rows,
@@ -191,15 +208,9 @@ fn project_all(projected: &mut Vec<ProjectedVertices>, world: &World, view: &Vie
 }
 
 impl SetupChunk {
-    /// Sets up the chunk's triangles of `world` seen through `view` (their object's vertices
-    /// are `projected`), with the planes of `varying`.
-    fn set_up(
-        &mut self,
-        world: &World,
-        view: &View,
-        projected: &ProjectedVertices,
-        varying: &dyn Varying,
-    ) {
+    /// Tests and sets up the chunk's triangles of `world` seen through `view` (their object's
+    /// vertices are `projected`), without the planes of the varying.
+    fn set_up(&mut self, world: &World, view: &View, projected: &ProjectedVertices) {
         let unique = &world.objects[self.object].unique;
         self.triangles.clear();
         self.corners.clear();
@@ -225,6 +236,10 @@ impl SetupChunk {
                 );
             }
         }
+    }
+
+    /// Sets up the planes of `varying` on the chunk's screen triangles.
+    fn set_varying(&mut self, varying: &dyn Varying) {
         self.mesh_triangles.clear();
         self.mesh_triangles
             .extend(self.corners.iter().map(|c| c.triangle));
