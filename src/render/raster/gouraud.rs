@@ -1,8 +1,9 @@
 //! Z-buffer with Gouraud shading: light the vertices, interpolate the colour.
 //!
 //! Only vertices of triangles that survive setup are lit: at the editor's preview size most
-//! triangles of a real mesh cover no pixel centre. Where most of an object's vertices are
-//! needed anyway, the whole object is lit at once, in order.
+//! triangles of a real mesh cover no pixel centre. Where most of an object's vertices were
+//! needed in the last frame, the whole object is lit at once, in order, beside the vertex
+//! stage.
 
 use glam::Vec3;
 use rayon::prelude::*;

@@ -7,6 +7,7 @@
 //! the same bits as one set up from its clip-space corners.
 
 use glam::Vec3;
+use rayon::prelude::*;
 use wide::{CmpGe, CmpGt, CmpLe, CmpLt, i32x4, i32x8};
 
 use super::snap::{GUARD, SUBPIXEL};
@@ -26,10 +27,8 @@ pub const OUTSIDE: u32 = BEHIND | PAST_RIGHT | PAST_LEFT | PAST_TOP | PAST_BOTTO
 /// such a vertex is clipped, and the vertex's snapped position is not used.
 pub const NEEDS_CLIP: u32 = 1 << 5;
 
-/// One vertex after the vertex stage, packed in 16 bytes so that setup reads all it tests of a
-/// vertex with one load.
+/// One vertex after the vertex stage.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-#[repr(C, align(16))]
 pub struct ProjectedVertex {
     /// Pixel coordinates in 1/256 pixel, rounded to nearest (halves away from zero). Only
     /// meaningful without [`NEEDS_CLIP`].
@@ -41,36 +40,42 @@ pub struct ProjectedVertex {
     pub w: f32,
 }
 
-/// The projected vertices of one mesh.
+/// The projected vertices of one mesh, each kept as four lanes (x, y, code and the bits of w)
+/// so that setup reads all it tests of a vertex with one 16-byte load.
 #[derive(Debug, Clone, Default)]
 pub struct ProjectedVertices {
-    vertices: Vec<ProjectedVertex>,
+    vertices: Vec<i32x4>,
 }
 
 impl ProjectedVertices {
     /// Vertex `i`.
     #[inline(always)]
     pub fn get(&self, i: usize) -> ProjectedVertex {
-        self.vertices[i]
+        let [x, y, code, w] = self.vertices[i].to_array();
+        ProjectedVertex {
+            x,
+            y,
+            code: code as u32,
+            w: f32::from_bits(w as u32),
+        }
     }
 
     /// Vertex `i` in four lanes: x, y, code and the bits of w.
     #[inline(always)]
     pub fn lanes(&self, i: usize) -> i32x4 {
-        let v = &self.vertices[i];
-        i32x4::from([v.x, v.y, v.code as i32, v.w.to_bits() as i32])
+        self.vertices[i]
     }
 
     /// Makes room for `len` vertices; the values are overwritten by [`project`].
     pub fn resize(&mut self, len: usize) {
-        self.vertices.resize(len, ProjectedVertex::default());
+        self.vertices.resize(len, i32x4::default());
     }
 
     /// The vertices as disjoint runs of `len`, each with the index of its first vertex, for
     /// projecting in parallel.
-    pub fn runs_mut(&mut self, len: usize) -> impl Iterator<Item = Run<'_>> {
+    pub fn runs_mut(&mut self, len: usize) -> impl IndexedParallelIterator<Item = Run<'_>> {
         self.vertices
-            .chunks_mut(len)
+            .par_chunks_mut(len)
             .enumerate()
             .map(move |(k, vertices)| Run {
                 first: k * len,
@@ -83,7 +88,7 @@ impl ProjectedVertices {
 pub struct Run<'a> {
     /// Index of the run's first vertex.
     pub first: usize,
-    vertices: &'a mut [ProjectedVertex],
+    vertices: &'a mut [i32x4],
 }
 
 impl Run<'_> {
@@ -133,16 +138,20 @@ pub fn project(view: &View, positions: &[Vec3], out: Run<'_>) {
             | bit(cy.cmp_gt(w), PAST_TOP)
             | bit(cy.cmp_lt(-w), PAST_BOTTOM)
             | (!bytemuck::cast::<_, i32x8>(inside) & i32x8::splat(NEEDS_CLIP as i32));
-        let (x, y, w) = (x.to_array(), y.to_array(), w.to_array());
-        let code: [u32; WIDTH] = bytemuck::cast(code.to_array());
-        let packed: [ProjectedVertex; WIDTH] = std::array::from_fn(|lane| ProjectedVertex {
-            x: x[lane],
-            y: y[lane],
-            code: code[lane],
-            w: w[lane],
-        });
+        // Lanes of x, y, code and w turned into one (x, y, code, w) vector per vertex.
+        let halves = |v: i32x8| bytemuck::cast::<i32x8, [i32x4; 2]>(v);
+        let (x, y, code, w) = (
+            halves(x),
+            halves(y),
+            halves(code),
+            halves(bytemuck::cast::<F32x8, i32x8>(w)),
+        );
+        let packed: [i32x4; WIDTH] = bytemuck::cast([
+            i32x4::transpose([x[0], y[0], code[0], w[0]]),
+            i32x4::transpose([x[1], y[1], code[1], w[1]]),
+        ]);
         let out = &mut out.vertices[k * WIDTH..k * WIDTH + chunk.len()];
-        match <&mut [ProjectedVertex; WIDTH]>::try_from(&mut *out) {
+        match <&mut [i32x4; WIDTH]>::try_from(&mut *out) {
             Ok(all) => *all = packed,
             Err(_) => out.copy_from_slice(&packed[..out.len()]),
         }
@@ -175,6 +184,7 @@ fn round(v: F32x8) -> i32x8 {
 #[cfg(test)]
 mod tests {
     use glam::Vec3;
+    use rayon::prelude::*;
 
     use super::{NEEDS_CLIP, ProjectedVertices, project};
     use crate::render::camera::View;
@@ -198,7 +208,11 @@ mod tests {
             .collect();
         let mut projected = ProjectedVertices::default();
         projected.resize(positions.len());
-        let run = projected.runs_mut(positions.len()).next().expect("one run");
+        let run = projected
+            .runs_mut(positions.len())
+            .collect::<Vec<_>>()
+            .pop()
+            .expect("one run");
         project(&view, &positions, run);
         let mut inside = 0;
         for (i, p) in positions.iter().enumerate() {

@@ -9,9 +9,7 @@
 
 use glam::{DVec3, Vec2, Vec3, Vec4};
 
-use wide::{CmpEq, CmpGt, CmpLt, i32x4, i32x8};
-
-use crate::render::simd::F32x8;
+use wide::{CmpEq, CmpGt, CmpLt, f32x4, i32x4};
 
 use super::projected::{NEEDS_CLIP, OUTSIDE, ProjectedVertices};
 use super::snap::{GUARD, HALF, SUBPIXEL, SUBPIXEL_BITS, edge, first_centre, last_centre, round};
@@ -57,6 +55,9 @@ pub struct Corners {
     /// Barycentrics of each screen vertex on the mesh triangle (weights of its vertices 1
     /// and 2): a clipped vertex lies between the triangle's own.
     pub bary: [Vec2; 3],
+    /// The screen triangle's barycentric weights over pixel centres, kept from the plane of
+    /// 1/w for the planes of the varying.
+    weights: Weights,
 }
 
 /// A clip-space vertex during clipping: position (x, y, w) and barycentrics on the original triangle.
@@ -171,40 +172,68 @@ pub fn setup_triangle(
 #[inline]
 pub fn may_cover(view: &View, projected: &ProjectedVertices, triangles: &[[u32; 3]]) -> u32 {
     debug_assert!((1..=WIDTH).contains(&triangles.len()));
+    let image = ImageBounds::of(view);
+    // Four lanes at a time: the values of the tests then nearly fit the sixteen SSE registers,
+    // where eight lanes spilled many (callgrind, bunny at 160×96: about 970 instructions per
+    // eight triangles with eight lanes, 800 with four).
+    let mut keep = 0;
+    for (quarter, four) in triangles.chunks(4).enumerate() {
+        keep |= may_cover_four(&image, projected, four) << (4 * quarter);
+    }
+    keep
+}
+
+/// The last pixel column and row of an image, in lanes.
+struct ImageBounds {
+    last_x: i32x4,
+    last_y: i32x4,
+}
+
+impl ImageBounds {
+    fn of(view: &View) -> ImageBounds {
+        ImageBounds {
+            last_x: i32x4::splat(view.width as i32 - 1),
+            last_y: i32x4::splat(view.height as i32 - 1),
+        }
+    }
+}
+
+/// [`may_cover`] for up to four triangles, as bits.
+#[inline(always)]
+fn may_cover_four(
+    image: &ImageBounds,
+    projected: &ProjectedVertices,
+    triangles: &[[u32; 3]],
+) -> u32 {
     let last = triangles.len() - 1;
-    // Each corner's eight vertices, four at a time, turned from (x, y, code, w) per vertex
-    // into lanes of x, of y and of codes.
+    // Each corner's four vertices, turned from (x, y, code, w) per vertex into lanes of x, of
+    // y and of codes; lanes past the last triangle repeat it.
     let corner = |k: usize| {
-        let half = |first: usize| {
-            let v = std::array::from_fn(|lane| {
-                projected.lanes(triangles[(first + lane).min(last)][k] as usize)
-            });
-            i32x4::transpose(v)
-        };
-        let ([x0, y0, c0, _], [x1, y1, c1, _]) = (half(0), half(4));
-        let join = |a: i32x4, b: i32x4| bytemuck::cast::<[i32x4; 2], i32x8>([a, b]);
-        (join(x0, x1), join(y0, y1), join(c0, c1))
+        let v = std::array::from_fn(|lane| projected.lanes(triangles[lane.min(last)][k] as usize));
+        let [x, y, code, _] = i32x4::transpose(v);
+        (x, y, code)
     };
     let (x0, y0, c0) = corner(0);
     let (x1, y1, c1) = corner(1);
     let (x2, y2, c2) = corner(2);
-    let zero = i32x8::splat(0);
-    let not_outside = (c0 & c1 & c2 & i32x8::splat(OUTSIDE as i32)).cmp_eq(zero);
-    let clipped = !((c0 | c1 | c2) & i32x8::splat(NEEDS_CLIP as i32)).cmp_eq(zero);
+    let zero = i32x4::splat(0);
+    let not_outside = (c0 & c1 & c2 & i32x4::splat(OUTSIDE as i32)).cmp_eq(zero);
+    let clipped = !((c0 | c1 | c2) & i32x4::splat(NEEDS_CLIP as i32)).cmp_eq(zero);
+    let (lo_x, hi_x) = (x0.min(x1).min(x2), x0.max(x1).max(x2));
+    let (lo_y, hi_y) = (y0.min(y1).min(y2), y0.max(y1).max(y2));
     // first_centre and last_centre: floor division by 256 is an arithmetic shift.
-    let first = |lo: i32x8| (lo + i32x8::splat((1 << SUBPIXEL_BITS) - 1 - HALF)) >> SUBPIXEL_BITS;
-    let last_c = |hi: i32x8| (hi - i32x8::splat(HALF)) >> SUBPIXEL_BITS;
-    let min_x = first(x0.min(x1).min(x2)).max(zero);
-    let max_x = last_c(x0.max(x1).max(x2)).min(i32x8::splat(view.width as i32 - 1));
-    let min_y = first(y0.min(y1).min(y2)).max(zero);
-    let max_y = last_c(y0.max(y1).max(y2)).min(i32x8::splat(view.height as i32 - 1));
+    let first = |lo: i32x4| (lo + i32x4::splat((1 << SUBPIXEL_BITS) - 1 - HALF)) >> SUBPIXEL_BITS;
+    let last_c = |hi: i32x4| (hi - i32x4::splat(HALF)) >> SUBPIXEL_BITS;
+    let min_x = first(lo_x).max(zero);
+    let max_x = last_c(hi_x).min(image.last_x);
+    let min_y = first(lo_y).max(zero);
+    let max_y = last_c(hi_y).min(image.last_y);
     let empty = min_x.cmp_gt(max_x) | min_y.cmp_gt(max_y);
     // A small triangle whose box holds at most 2×2 centres has them tested exactly, as scan
     // conversion would: one that covers none of them draws nothing.
-    let extent = |a: i32x8, b: i32x8, c: i32x8| a.max(b).max(c) - a.min(b).min(c);
-    let small = extent(x0, x1, x2).cmp_lt(i32x8::splat(EXACT_IN_F32_EXTENT))
-        & extent(y0, y1, y2).cmp_lt(i32x8::splat(EXACT_IN_F32_EXTENT));
-    let two = i32x8::splat(2);
+    let exact = i32x4::splat(EXACT_IN_F32_EXTENT);
+    let small = (hi_x - lo_x).cmp_lt(exact) & (hi_y - lo_y).cmp_lt(exact);
+    let two = i32x4::splat(2);
     let (columns, rows) = (max_x - min_x, max_y - min_y);
     let tested = small & columns.cmp_lt(two) & rows.cmp_lt(two) & !clipped & !empty;
     let covering = if tested.any() {
@@ -221,51 +250,51 @@ pub fn may_cover(view: &View, projected: &ProjectedVertices, triangles: &[[u32; 
 /// value below 2^24 are integers that `f32` holds exactly.
 const EXACT_IN_F32_EXTENT: i32 = 1 << 11;
 
-/// Which of eight triangles (fixed-point vertices `x`, `y`, either orientation, each smaller
+/// Which of four triangles (fixed-point vertices `x`, `y`, either orientation, each smaller
 /// than [`EXACT_IN_F32_EXTENT`]) cover a pixel centre among columns `min_x..=min_x + columns` and rows
 /// `min_y..=min_y + rows` (`columns`, `rows` 0 or 1), by the edge functions and top-left rule
 /// that scan conversion uses once the triangle is turned counter-clockwise. A triangle of no
 /// area covers nothing (setup drops it). Lanes of larger triangles give unspecified results.
 #[inline(always)]
 fn covers_a_centre(
-    x: [i32x8; 3],
-    y: [i32x8; 3],
-    min_x: i32x8,
-    min_y: i32x8,
-    columns: i32x8,
-    rows: i32x8,
-) -> i32x8 {
-    let zero = F32x8::splat(0.0);
-    let exact = |v: i32x8| v.round_float();
+    x: [i32x4; 3],
+    y: [i32x4; 3],
+    min_x: i32x4,
+    min_y: i32x4,
+    columns: i32x4,
+    rows: i32x4,
+) -> i32x4 {
+    let zero = f32x4::splat(0.0);
+    let exact = |v: i32x4| v.round_float();
     // Coordinates relative to vertex 0, and the first centre's.
     let (x1, y1) = (exact(x[1] - x[0]), exact(y[1] - y[0]));
     let (x2, y2) = (exact(x[2] - x[0]), exact(y[2] - y[0]));
-    let cx = exact((min_x << SUBPIXEL_BITS) + i32x8::splat(HALF) - x[0]);
-    let cy = exact((min_y << SUBPIXEL_BITS) + i32x8::splat(HALF) - y[0]);
+    let cx = exact((min_x << SUBPIXEL_BITS) + i32x4::splat(HALF) - x[0]);
+    let cy = exact((min_y << SUBPIXEL_BITS) + i32x4::splat(HALF) - y[0]);
     let area = x1 * y2 - y1 * x2;
     // Clockwise triangles are turned: each edge reversed, its function negated.
     let sign = area
         .cmp_lt(zero)
-        .blend(F32x8::splat(-1.0), F32x8::splat(1.0));
+        .blend(f32x4::splat(-1.0), f32x4::splat(1.0));
     let vx = [zero, x1, x2];
     let vy = [zero, y1, y2];
-    let step = F32x8::splat(SUBPIXEL);
-    let mut at = [F32x8::splat(f32::from_bits(u32::MAX)); 4];
+    let step = f32x4::splat(SUBPIXEL);
+    let mut at = [f32x4::splat(f32::from_bits(u32::MAX)); 4];
     for k in 0..3 {
         let (a, b) = ((k + 1) % 3, (k + 2) % 3);
         let (dx, dy) = ((vx[b] - vx[a]) * sign, (vy[b] - vy[a]) * sign);
         let top_left = (dy.cmp_eq(zero) & dx.cmp_gt(zero)) | dy.cmp_lt(zero);
         // A centre is inside the edge where e ≥ 0 on a top or left edge, e > 0 on the others;
         // e is an integer, so that is e + 1/2 > 0 or e > 0.
-        let e = dx * (cy - vy[a]) - dy * (cx - vx[a]) + (top_left & F32x8::splat(0.5));
+        let e = dx * (cy - vy[a]) - dy * (cx - vx[a]) + (top_left & f32x4::splat(0.5));
         let (right, below) = (dy * step, dx * step);
         at[0] &= e.cmp_gt(zero);
         at[1] &= (e - right).cmp_gt(zero);
         at[2] &= (e + below).cmp_gt(zero);
         at[3] &= (e - right + below).cmp_gt(zero);
     }
-    let mask = |m: F32x8| bytemuck::cast::<_, i32x8>(m);
-    let izero = i32x8::splat(0);
+    let mask = |m: f32x4| bytemuck::cast::<_, i32x4>(m);
+    let izero = i32x4::splat(0);
     let (has_right, has_below) = (columns.cmp_gt(izero), rows.cmp_gt(izero));
     let covered = mask(at[0])
         | (mask(at[1]) & has_right)
@@ -329,11 +358,13 @@ fn emit(
         triangle,
         inv_w,
         bary,
+        weights,
     });
 }
 
 /// Each barycentric weight λk = (edge function opposite vertex k) / area is affine in the pixel
 /// centre: its value at the reference pixel's centre, and its steps per pixel right and down.
+#[derive(Debug, Clone, Copy)]
 struct Weights {
     at: [f64; 3],
     step_x: [f64; 3],
@@ -396,10 +427,7 @@ impl ScreenTriangle {
             let varying = a0 + (a1 - a0) * b.x + (a2 - a0) * b.y;
             varying * corners.inv_w[k]
         });
-        let area = edge(
-            self.x[0], self.y[0], self.x[1], self.y[1], self.x[2], self.y[2],
-        );
-        let weights = Weights::new(self.x, self.y, self.ref_x, self.ref_y, area);
+        let weights = &corners.weights;
         for c in 0..3 {
             let (at, per_x, per_y) = weights.plane(scaled.map(|v| v[c]));
             self.at_ref[c] = at as f32;

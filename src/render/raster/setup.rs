@@ -52,6 +52,10 @@ pub struct Geometry {
     projected: Vec<ProjectedVertices>,
     /// The setup tasks and their screen triangles.
     chunks: Vec<SetupChunk>,
+    /// Screen triangles per object in the last frame set up (empty before the first): what
+    /// the varying's per-object work is planned by, the next frame's camera being usually
+    /// close to the last's.
+    survivors: Vec<usize>,
     /// Depth and triangle buffers of the bands being drawn, one set per render thread.
     pub(super) band_buffers: Vec<std::sync::Mutex<BandBuffers>>,
 }
@@ -108,83 +112,56 @@ impl<'a> Bands<'a> {
 impl Geometry {
     /// Sets up every triangle of `world` seen through `view`, in object then triangle order,
     /// with the planes of `varying`, and bins them into bands of rows; returns the bands.
+    ///
+    /// Once a frame of the world was set up, two parallel passes: the vertex stage (with
+    /// `varying`'s per-object work beside it, planned by the last frame's survivors), then one
+    /// pass per setup chunk that tests, sets up, shades the corners of and bins its triangles.
+    /// A small frame thus wakes the render threads twice rather than once per stage. The first
+    /// frame plans the varying's work by its own survivors, between two passes.
     pub fn set_up(&mut self, world: &World, view: &View, varying: &mut dyn Varying) -> Bands<'_> {
-        self.project(world, view);
+        let planned = self.survivors.len() == world.objects.len();
+        let projected = &mut self.projected;
+        if planned {
+            let survivors = &self.survivors;
+            rayon::join(
+                || project_all(projected, world, view),
+                || varying.prepare(survivors),
+            );
+        } else {
+            project_all(projected, world, view);
+        }
         self.plan_chunks(world);
         let rows = band_rows(view.width, view.height);
         let bands = view.height.div_ceil(rows) as usize;
         let projected = &self.projected;
-        self.chunks.par_iter_mut().for_each(|chunk| {
-            let unique = &world.objects[chunk.object].unique;
-            let projected = &projected[chunk.object];
-            chunk.triangles.clear();
-            chunk.corners.clear();
-            // Room for every triangle at once: growing by doubling would copy and fault in
-            // twice the memory.
-            chunk.triangles.reserve(chunk.end - chunk.start);
-            chunk.corners.reserve(chunk.end - chunk.start);
-            for first in (chunk.start..chunk.end).step_by(WIDTH) {
-                let group = &unique.triangles[first..(first + WIDTH).min(chunk.end)];
-                let mut lanes = may_cover(view, projected, group);
-                while lanes != 0 {
-                    let lane = lanes.trailing_zeros() as usize;
-                    lanes &= lanes - 1;
-                    setup_triangle(
-                        view,
-                        projected,
-                        &unique.positions,
-                        group[lane],
-                        chunk.object as u32,
-                        (first + lane) as u32,
-                        &mut chunk.triangles,
-                        &mut chunk.corners,
-                    );
-                }
-            }
-        });
-        let mut needed = vec![0; world.objects.len()];
-        for chunk in &self.chunks {
-            needed[chunk.object] += chunk.triangles.len();
+        if planned {
+            let varying = &*varying;
+            self.chunks.par_iter_mut().for_each(|chunk| {
+                chunk.set_up(world, view, &projected[chunk.object]);
+                chunk.set_varying(varying);
+                chunk.bin(rows, bands);
+            });
+        } else {
+            self.chunks
+                .par_iter_mut()
+                .for_each(|chunk| chunk.set_up(world, view, &projected[chunk.object]));
         }
-        varying.prepare(&needed);
-        let varying = &*varying;
-        self.chunks.par_iter_mut().for_each(|chunk| {
-            chunk.mesh_triangles.clear();
-            chunk
-                .mesh_triangles
-                .extend(chunk.corners.iter().map(|c| c.triangle));
-            chunk.values.clear();
-            varying.corners(chunk.object, &chunk.mesh_triangles, &mut chunk.values);
-            for ((t, corners), values) in chunk
-                .triangles
-                .iter_mut()
-                .zip(&chunk.corners)
-                .zip(&chunk.values)
-            {
-                t.set_varying(corners, *values);
-            }
-            chunk.bin(rows, bands);
-        });
+        self.survivors.clear();
+        self.survivors.resize(world.objects.len(), 0);
+        for chunk in &self.chunks {
+            self.survivors[chunk.object] += chunk.triangles.len();
+        }
+        if !planned {
+            varying.prepare(&self.survivors);
+            let varying = &*varying;
+            self.chunks.par_iter_mut().for_each(|chunk| {
+                chunk.set_varying(varying);
+                chunk.bin(rows, bands);
+            });
+        }
         Bands {
             rows,
             chunks: &self.chunks,
-        }
-    }
-
-    /// The vertex stage: every distinct position of every object projected once.
-    fn project(&mut self, world: &World, view: &View) {
-        self.projected
-            .resize_with(world.objects.len(), ProjectedVertices::default);
-        for (o, projected) in world.objects.iter().zip(&mut self.projected) {
-            let positions = &o.unique.positions;
-            projected.resize(positions.len());
-            projected
-                .runs_mut(VERTEX_CHUNK)
-                .par_bridge()
-                .for_each(|run| {
-                    let vertices = &positions[run.first..run.first + run.len()];
-                    project(view, vertices, run)
-                });
         }
     }
 
@@ -207,7 +184,77 @@ impl Geometry {
     }
 }
 
+/// The vertex stage: every distinct position of every object projected once, in parallel runs
+/// of [`VERTEX_CHUNK`] vertices.
+fn project_all(projected: &mut Vec<ProjectedVertices>, world: &World, view: &View) {
+    projected.resize_with(world.objects.len(), ProjectedVertices::default);
+    for (o, projected) in world.objects.iter().zip(projected.iter_mut()) {
+        projected.resize(o.unique.positions.len());
+    }
+    world
+        .objects
+        .par_iter()
+        .zip(projected.par_iter_mut())
+        .flat_map(|(o, projected)| {
+            let positions = &o.unique.positions;
+            projected
+                .runs_mut(VERTEX_CHUNK)
+                .map(move |run| (positions, run))
+        })
+        .for_each(|(positions, run)| {
+            let vertices = &positions[run.first..run.first + run.len()];
+            project(view, vertices, run)
+        });
+}
+
 impl SetupChunk {
+    /// Tests and sets up the chunk's triangles of `world` seen through `view` (their object's
+    /// vertices are `projected`), without the planes of the varying.
+    fn set_up(&mut self, world: &World, view: &View, projected: &ProjectedVertices) {
+        let unique = &world.objects[self.object].unique;
+        self.triangles.clear();
+        self.corners.clear();
+        // Room for every triangle at once: growing by doubling would copy and fault in twice
+        // the memory.
+        self.triangles.reserve(self.end - self.start);
+        self.corners.reserve(self.end - self.start);
+        for first in (self.start..self.end).step_by(WIDTH) {
+            let group = &unique.triangles[first..(first + WIDTH).min(self.end)];
+            let mut lanes = may_cover(view, projected, group);
+            while lanes != 0 {
+                let lane = lanes.trailing_zeros() as usize;
+                lanes &= lanes - 1;
+                setup_triangle(
+                    view,
+                    projected,
+                    &unique.positions,
+                    group[lane],
+                    self.object as u32,
+                    (first + lane) as u32,
+                    &mut self.triangles,
+                    &mut self.corners,
+                );
+            }
+        }
+    }
+
+    /// Sets up the planes of `varying` on the chunk's screen triangles.
+    fn set_varying(&mut self, varying: &dyn Varying) {
+        self.mesh_triangles.clear();
+        self.mesh_triangles
+            .extend(self.corners.iter().map(|c| c.triangle));
+        self.values.clear();
+        varying.corners(self.object, &self.mesh_triangles, &mut self.values);
+        for ((t, corners), values) in self
+            .triangles
+            .iter_mut()
+            .zip(&self.corners)
+            .zip(&self.values)
+        {
+            t.set_varying(corners, *values);
+        }
+    }
+
     /// Bins the chunk's screen triangles into `bands` bands of `rows` rows, in triangle order.
     fn bin(&mut self, rows: u32, bands: usize) {
         let reach = |t: &ScreenTriangle| {

@@ -6,10 +6,12 @@ use glam::Vec3;
 use crate::world::World;
 
 /// The varying of every vertex of a world's meshes.
-pub trait Varying: Sync {
+pub trait Varying: Sync + Send {
     /// Called once per frame before any [`Varying::corners`], with the number of triangles per
-    /// object whose corners will be asked for: a varying that is costly per vertex can work out
-    /// whole objects at once where most of their vertices are needed.
+    /// object whose corners will be asked for, or, once a frame of the world was drawn, beside
+    /// the vertex stage with the last frame's numbers: a varying that is costly per vertex can
+    /// work out whole objects at once where most of their vertices are likely to be needed.
+    /// The choice changes no value.
     fn prepare(&mut self, _triangles_needed: &[usize]) {}
 
     /// Appends to `out` the values at the three vertices of each of `triangles` (indices into
