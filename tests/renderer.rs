@@ -218,3 +218,50 @@ fn options_beyond_the_limits_are_refused_before_anything_is_drawn() {
         "the frame is untouched"
     );
 }
+
+/// A kept Z-buffer plans a frame's per-object work by the last frame's: whatever the last frame
+/// was (another camera, another world with as many objects), every frame must come out as a new
+/// renderer draws it, to the bit.
+#[test]
+fn a_kept_z_buffer_draws_every_frame_as_a_new_renderer_would() {
+    let scene = common::default_scene();
+    let world = common::world(&scene);
+    // The same objects in reverse order: as many objects, each the size of another.
+    let mut reversed = scene.clone();
+    reversed.objects.reverse();
+    let reversed_world = common::world(&reversed);
+    let far = Camera {
+        position: scene.camera.position * 6.0,
+        ..scene.camera
+    };
+    let frames = [
+        (&world, scene.camera),
+        (&world, moved(&scene.camera)),
+        (&world, far),
+        (&reversed_world, scene.camera),
+        (&reversed_world, far),
+        (&world, scene.camera),
+    ];
+    let progress = Progress::new();
+    for algorithm in [Algorithm::Gouraud, Algorithm::Phong] {
+        for threads in [1, 2] {
+            let options = RenderOptions {
+                threads: std::num::NonZeroUsize::new(threads),
+                ..RenderOptions::new(algorithm, 160, 96)
+            };
+            let mut renderer = Renderer::new(options);
+            let mut frame = Frame::default();
+            for (i, (world, camera)) in frames.iter().enumerate() {
+                renderer
+                    .render(world, camera, &progress, &mut frame)
+                    .expect("render");
+                let fresh = common::render(world, camera, options).0;
+                assert_eq!(
+                    bits(&frame),
+                    bits(&fresh),
+                    "{algorithm}, {threads} thread(s), frame {i}"
+                );
+            }
+        }
+    }
+}
