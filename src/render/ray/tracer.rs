@@ -228,9 +228,9 @@ impl<'a> Tracer<'a> {
     /// the background; `depth` counts reflections so far. Each lane gets the bits its ray would
     /// get alone from [`Tracer::trace`].
     ///
-    /// Inlined into the primary packet's loop (one call fewer per packet: tracing 5% faster on
-    /// the bunny at 1920×1080); reflected packets come back through
-    /// [`Tracer::trace_reflected_lanes`], which is not inlined.
+    /// Inlined into the primary packet's loop, as the primary body was before reflected packets
+    /// shared it (callgrind, bunny 320×180: 0.6% fewer instructions than out of line);
+    /// reflected packets come back through [`Tracer::trace_reflected_lanes`], not inlined.
     #[inline(always)]
     pub(super) fn trace_lanes(
         &self,
