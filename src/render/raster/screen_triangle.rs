@@ -60,7 +60,8 @@ pub struct Corners {
     weights: Weights,
 }
 
-/// A clip-space vertex during clipping: position (x, y, w) and barycentrics on the original triangle.
+/// A clip-space vertex during clipping: position (x, y, w) and barycentrics on the original
+/// triangle.
 #[derive(Debug, Clone, Copy)]
 struct ClipVertex {
     pos: Vec3,
@@ -251,10 +252,11 @@ fn may_cover_four(
 const EXACT_IN_F32_EXTENT: i32 = 1 << 11;
 
 /// Which of four triangles (fixed-point vertices `x`, `y`, either orientation, each smaller
-/// than [`EXACT_IN_F32_EXTENT`]) cover a pixel centre among columns `min_x..=min_x + columns` and rows
-/// `min_y..=min_y + rows` (`columns`, `rows` 0 or 1), by the edge functions and top-left rule
-/// that scan conversion uses once the triangle is turned counter-clockwise. A triangle of no
-/// area covers nothing (setup drops it). Lanes of larger triangles give unspecified results.
+/// than [`EXACT_IN_F32_EXTENT`]) cover a pixel centre among columns `min_x..=min_x + columns`
+/// and rows `min_y..=min_y + rows` (`columns`, `rows` 0 or 1), by the edge functions and
+/// top-left rule that scan conversion uses once the triangle is turned counter-clockwise. A
+/// triangle of no area covers nothing (setup drops it). Lanes of larger triangles give
+/// unspecified results.
 #[inline(always)]
 fn covers_a_centre(
     x: [i32x4; 3],

@@ -3,8 +3,9 @@
 //! so the run is one piece).
 //!
 //! Small triangles (most of a real mesh) test eight centres at a time in `i32` lanes and hand
-//! on the lane masks, which the depth test uses as they are: no division. Larger ones solve each row's run from the three
-//! edge functions in `i64`, one division per edge and row, which their longer rows pay for.
+//! on the lane masks, which the depth test uses as they are: no division. Larger ones solve each
+//! row's run from the three edge functions in `i64`, one division per edge and row, which their
+//! longer rows pay for.
 //! Both accept exactly the centres the exact integer edge functions accept.
 
 use wide::{CmpGt, i32x8};
