@@ -14,12 +14,22 @@ impl FaceList {
     /// Adds the parallelogram `origin + s·u + t·v` (s, t in [0, 1]) as a `segments`×`segments`
     /// grid of quads, two triangles each, wound counter-clockwise seen from `u × v`.
     pub fn quad(&mut self, origin: Vec3, u: Vec3, v: Vec3, segments: u32) {
+        let n = segments.max(1) as f32;
+        self.grid(segments, |col, row| {
+            origin + u * (col as f32 / n) + v * (row as f32 / n)
+        });
+    }
+
+    /// Adds a `segments`×`segments` grid of quads, two triangles each, whose vertex in column
+    /// `col` and row `row` (each 0 to `segments`) is `point(col, row)`; wound as
+    /// [`FaceList::quad`] winds it with columns along `u` and rows along `v`. Faces that meet
+    /// along an edge share its vertices' bits when their `point`s compute them alike.
+    pub fn grid(&mut self, segments: u32, point: impl Fn(u32, u32) -> Vec3) {
         let n = segments.max(1);
         let base = self.positions.len() as u32;
         for row in 0..=n {
             for col in 0..=n {
-                let (s, t) = (col as f32 / n as f32, row as f32 / n as f32);
-                self.positions.push(origin + u * s + v * t);
+                self.positions.push(point(col, row));
             }
         }
         let at = |row: u32, col: u32| base + row * (n + 1) + col;
@@ -39,16 +49,24 @@ impl FaceList {
 
     /// Adds triangle `a, b, c` split into `segments`² similar triangles, wound like `a, b, c`.
     pub fn triangle(&mut self, a: Vec3, b: Vec3, c: Vec3, segments: u32) {
+        let n = segments.max(1) as f32;
+        self.triangle_grid(segments, |k, r| {
+            a + (b - a) * (k as f32 / n) + (c - a) * (r as f32 / n)
+        });
+    }
+
+    /// Adds a triangle split into `segments`² similar triangles, whose vertex `k` steps along
+    /// its first edge and `r` rows toward its third corner (k + r ≤ `segments`) is
+    /// `point(k, r)`; wound as [`FaceList::triangle`] winds `a, b, c`.
+    pub fn triangle_grid(&mut self, segments: u32, point: impl Fn(u32, u32) -> Vec3) {
         let n = segments.max(1);
         let base = self.positions.len() as u32;
-        // Row r (0 at edge ab, n at apex c) holds n − r + 1 vertices.
+        // Row r (0 at the first edge, n at the third corner) holds n − r + 1 vertices.
         let mut row_start = Vec::with_capacity(n as usize + 1);
         for r in 0..=n {
             row_start.push(self.positions.len() as u32 - base);
-            let t = r as f32 / n as f32;
             for k in 0..=(n - r) {
-                let s = k as f32 / n as f32;
-                self.positions.push(a + (b - a) * s + (c - a) * t);
+                self.positions.push(point(k, r));
             }
         }
         let at = |r: u32, k: u32| base + row_start[r as usize] + k;
