@@ -9,15 +9,15 @@
 //!
 //! Inner nodes are written once, in depth-first order, into runs (one per subtree built in one
 //! thread) that are joined at the end; leaves copy nothing while building, and the triangles
-//! are laid out in leaf order in one parallel pass once the tree is done.
+//! are laid out in leaf order once the tree is done, over the prims they come from
+//! (`bvh_buffer`).
 
-use glam::Vec3A;
 use rayon::prelude::*;
 
 use super::bvh::{Bvh, Inner, MAX_TREE_DEPTH, Node};
+use super::bvh_buffer::BuildBuffer;
 use super::bvh_prims::{Extent, PartitionScratch, Prim, partition, partition_scan};
 use super::bvh_sah::{BinScratch, Binning};
-use super::intersect::Triangle;
 use crate::mesh::Mesh;
 use crate::render::progress::{Cancelled, Progress};
 
@@ -31,30 +31,15 @@ const PASS_CHUNK: usize = 4096;
 /// Builds the hierarchy over `mesh`, or stops early once `progress` is cancelled (checked at
 /// every node of at least [`PARALLEL_MIN`] triangles, so within milliseconds).
 pub fn build(mesh: &Mesh, progress: &Progress) -> Result<Bvh, Cancelled> {
-    let mut prims: Vec<Prim> = (0..mesh.triangles.len())
-        .into_par_iter()
-        .with_min_len(PASS_CHUNK)
-        .map(|t| {
-            let [a, b, c] = mesh.corners(t).map(Vec3A::from);
-            Prim::new(a.min(b).min(c), a.max(b).max(c), t as u32)
-        })
-        .collect();
-    if prims.is_empty() {
+    if mesh.triangles.is_empty() {
         return Ok(Bvh::default());
     }
-    let extent = Extent::of(&prims);
-    let top = build_runs(&mut prims, extent, 0, 0, progress);
+    let mut buffer = BuildBuffer::new(mesh);
+    let prims = buffer.prims();
+    let extent = Extent::of(prims);
+    let top = build_runs(prims, extent, 0, 0, progress);
     progress.check()?;
-    let mut triangles = Vec::new();
-    let mut ids = Vec::new();
-    prims
-        .par_iter()
-        .with_min_len(PASS_CHUNK)
-        .map(|p| {
-            let [a, b, c] = mesh.corners(p.index() as usize);
-            (Triangle::new(a, b, c), p.index())
-        })
-        .unzip_into_vecs(&mut triangles, &mut ids);
+    let (triangles, ids) = buffer.into_triangles(mesh);
     Ok(Bvh {
         root: Some(top.node),
         inner: join_runs(&top.runs),

@@ -16,7 +16,8 @@ const CHUNK: usize = 8 * 1024;
 
 /// One triangle during the build: its box, with the mesh index in the fourth lane of `lo` (32
 /// bytes, so the array that is partitioned over and over stays small).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
 pub struct Prim {
     lo: f32x4,
     hi: f32x4,

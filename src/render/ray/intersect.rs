@@ -10,7 +10,8 @@ use super::half_line::Ray;
 pub(crate) const PARALLEL_COS: f32 = 1.0e-6;
 
 /// A triangle prepared for intersection: one 64-byte cache line.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
 pub struct Triangle {
     /// First vertex.
     pub v0: Vec3A,

@@ -4,6 +4,7 @@
 
 mod accel;
 mod bvh;
+mod bvh_buffer;
 mod bvh_build;
 mod bvh_prims;
 mod bvh_sah;

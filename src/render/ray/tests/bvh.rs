@@ -240,6 +240,40 @@ fn every_triangle_sits_in_exactly_one_leaf() {
     );
 }
 
+/// `n` small triangles along a wavy line, so that the tree has many leaves.
+fn strip(n: usize) -> Mesh {
+    let triangles: Vec<[Vec3; 3]> = (0..n)
+        .map(|k| {
+            let x = k as f32 * 0.01;
+            let a = Vec3::new(x, (x * 7.0).sin(), (x * 3.0).cos());
+            [
+                a,
+                a + Vec3::new(0.02, 0.01, 0.0),
+                a + Vec3::new(0.0, 0.02, 0.01),
+            ]
+        })
+        .collect();
+    mesh_from(&triangles)
+}
+
+/// The triangles are laid out over the prims they come from (`bvh_buffer`): every slot must end
+/// up holding the triangle its id names, for sizes around the rounds of that layout.
+#[test]
+fn every_slot_holds_the_triangle_its_id_names() {
+    for n in [1, 2, 3, 4095, 4096, 8191, 8192, 8193, 20_001, 40_000] {
+        let mesh = strip(n);
+        let bvh = Bvh::build(&mesh);
+        assert_eq!(bvh.triangles.len(), n);
+        for (k, (tri, &id)) in bvh.triangles.iter().zip(&bvh.ids).enumerate() {
+            let [a, b, c] = mesh.corners(id as usize);
+            assert_eq!(*tri, Triangle::new(a, b, c), "slot {k} of {n}");
+        }
+        let mut ids = bvh.ids.clone();
+        ids.sort_unstable();
+        assert!(ids.iter().copied().eq(0..n as u32), "{n}: every id once");
+    }
+}
+
 #[test]
 fn empty_mesh_has_no_hits() {
     let bvh = Bvh::build(&Mesh::default());
