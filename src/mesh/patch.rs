@@ -47,17 +47,10 @@ impl FaceList {
         }
     }
 
-    /// Adds triangle `a, b, c` split into `segments`² similar triangles, wound like `a, b, c`.
-    pub fn triangle(&mut self, a: Vec3, b: Vec3, c: Vec3, segments: u32) {
-        let n = segments.max(1) as f32;
-        self.triangle_grid(segments, |k, r| {
-            a + (b - a) * (k as f32 / n) + (c - a) * (r as f32 / n)
-        });
-    }
-
     /// Adds a triangle split into `segments`² similar triangles, whose vertex `k` steps along
     /// its first edge and `r` rows toward its third corner (k + r ≤ `segments`) is
-    /// `point(k, r)`; wound as [`FaceList::triangle`] winds `a, b, c`.
+    /// `point(k, r)`; wound like its corners `point(0, 0)`, `point(segments, 0)`,
+    /// `point(0, segments)`.
     pub fn triangle_grid(&mut self, segments: u32, point: impl Fn(u32, u32) -> Vec3) {
         let n = segments.max(1);
         let base = self.positions.len() as u32;
