@@ -11,8 +11,12 @@ use super::bvh_prims::{Aabb, Prim, Side};
 
 /// Centroid bins per axis.
 pub const BINS: usize = 16;
-/// Cost of visiting a node, relative to one ray/triangle test.
-const TRAVERSAL_COST: f32 = 2.0;
+/// Cost of visiting a node, relative to one ray/triangle test. A visit is a dependent load that
+/// often misses the cache, while a leaf's triangles are prefetched together and tested on all
+/// eight lanes of a packet: 4 rather than 2 makes shallower trees with fuller leaves, which
+/// build 10–15% faster (1.31M-triangle icosphere: 225–250 → 196–220 ms on 2 threads) and trace
+/// as fast or faster (icosphere 640×360: 25.3–25.6 → 22.5–25.3 ms), with the same images.
+const TRAVERSAL_COST: f32 = 4.0;
 /// Nodes with fewer triangles bin along their longest centroid axis only: the lower levels
 /// cost a third as much, and the tree's quality is decided mostly near the top.
 const ALL_AXES_MIN: usize = 4 * 1024;
