@@ -12,6 +12,7 @@ use glam::Vec3A;
 use rayon::prelude::*;
 
 use super::bvh_prims::Prim;
+use super::huge_pages;
 use super::intersect::Triangle;
 use crate::mesh::Mesh;
 
@@ -29,6 +30,7 @@ impl BuildBuffer {
     pub fn new(mesh: &Mesh) -> BuildBuffer {
         let n = mesh.triangles.len();
         let mut slots = bytemuck::zeroed_vec::<Prim>(2 * n);
+        huge_pages::advise(&mut slots);
         slots[n..]
             .par_iter_mut()
             .with_min_len(CHUNK)
@@ -55,6 +57,7 @@ impl BuildBuffer {
     pub fn into_triangles(mut self, mesh: &Mesh) -> (Vec<Triangle>, Vec<u32>) {
         let n = self.slots.len() / 2;
         let mut ids = vec![0u32; n];
+        huge_pages::advise(&mut ids);
         let mut start = 0;
         loop {
             let end = (n + start) / 2;

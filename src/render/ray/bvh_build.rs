@@ -18,6 +18,7 @@ use super::bvh::{Bvh, Inner, MAX_TREE_DEPTH, Node};
 use super::bvh_buffer::BuildBuffer;
 use super::bvh_prims::{Extent, PartitionScratch, Prim, partition, partition_scan};
 use super::bvh_sah::{BinScratch, Binning};
+use super::huge_pages;
 use crate::mesh::Mesh;
 use crate::render::progress::{Cancelled, Progress};
 
@@ -70,6 +71,8 @@ fn join_runs(runs: &[Vec<Inner>]) -> Vec<Inner> {
         total += run.len();
     }
     starts.push(total);
+    let mut joined = Vec::with_capacity(total);
+    huge_pages::advise(joined.spare_capacity_mut());
     (0..total)
         .into_par_iter()
         .with_min_len(PASS_CHUNK)
@@ -90,7 +93,8 @@ fn join_runs(runs: &[Vec<Inner>]) -> Vec<Inner> {
                 inner
             },
         )
-        .collect()
+        .collect_into_vec(&mut joined);
+    joined
 }
 
 /// The subtree over `prims` (which start at slot `first` of the final order), at `depth`

@@ -9,6 +9,7 @@ mod bvh_build;
 mod bvh_prims;
 mod bvh_sah;
 mod half_line;
+mod huge_pages;
 mod intersect;
 mod packet;
 #[cfg(target_arch = "x86_64")]
