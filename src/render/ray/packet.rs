@@ -12,7 +12,7 @@ use wide::{CmpGe, CmpGt, CmpLe, CmpLt, u32x8};
 
 use super::bvh::{Bvh, MAX_TREE_DEPTH, Node};
 use super::half_line::TINY;
-use super::intersect::{PARALLEL_COS, Triangle};
+use super::intersect::{EDGE_BAND, PARALLEL_COS, Triangle};
 use super::prefetch;
 use crate::render::simd::{F32x8, V3};
 
@@ -275,7 +275,46 @@ impl<L: Lane8> Rays<L> {
         let zero = L::splat(0.0);
         let inside = u.ge(zero) & v.ge(zero) & (u + v).le(L::splat(1.0));
         let nearer = t.gt(self.t_min) & t.lt(t_max);
-        (not_parallel & nearer & inside, t, u, v)
+        let found = not_parallel & nearer & inside;
+        let least = u.min(v).min(L::splat(1.0) - u - v);
+        let edge =
+            not_parallel & nearer & least.gt(L::splat(-EDGE_BAND)) & least.lt(L::splat(EDGE_BAND));
+        if edge.any() {
+            return self.meet_near_edge(tri, t_max, edge, (found, t, u, v));
+        }
+        (found, t, u, v)
+    }
+
+    /// [`Rays::meet_triangle`]'s answer with the lanes of `edge` decided in `f64` by
+    /// [`Triangle::intersect_exact`], as [`Triangle::intersect`] decides them.
+    #[cold]
+    #[inline(never)]
+    fn meet_near_edge(
+        &self,
+        tri: &Triangle,
+        t_max: L,
+        edge: L,
+        lanes: (L, L, L, L),
+    ) -> (L, L, L, L) {
+        let [mut found, mut t, mut u, mut v] =
+            [lanes.0, lanes.1, lanes.2, lanes.3].map(L::to_array);
+        let [ox, oy, oz] = self.origin.map(L::to_array);
+        let [dx, dy, dz] = self.dir.map(L::to_array);
+        let (t_min, t_max) = (self.t_min.to_array(), t_max.to_array());
+        for (k, lane) in edge.to_array().into_iter().enumerate() {
+            if lane.to_bits() == 0 {
+                continue;
+            }
+            let origin = Vec3A::new(ox[k], oy[k], oz[k]);
+            let dir = Vec3A::new(dx[k], dy[k], dz[k]);
+            let hit = tri.intersect_exact(origin, dir, t_min[k], t_max[k]);
+            found[k] = f32::from_bits(if hit.is_some() { u32::MAX } else { 0 });
+            if let Some(h) = hit {
+                (t[k], u[k], v[k]) = (h.t, h.u, h.v);
+            }
+        }
+        let back = |a: [f32; 8]| L::from_wide(F32x8::from(a));
+        (back(found), back(t), back(u), back(v))
     }
 }
 

@@ -14,7 +14,7 @@ use crate::render::ray::intersect::Triangle;
 use crate::render::ray::packet::{PacketHits, RayPacket};
 use crate::render::simd::{F32x8, V3, WIDTH};
 
-fn mesh_from(triangles: &[[Vec3; 3]]) -> Mesh {
+pub(super) fn mesh_from(triangles: &[[Vec3; 3]]) -> Mesh {
     let positions: Vec<Vec3> = triangles.iter().flatten().copied().collect();
     Mesh {
         normals: vec![Vec3::Y; positions.len()],
@@ -91,7 +91,7 @@ proptest! {
 }
 
 /// Eight rays as a packet: lane k is `rays[k]`, hits beyond `t_min`.
-fn packet_of(rays: &[(Vec3, Vec3)], t_min: f32) -> RayPacket {
+pub(super) fn packet_of(rays: &[(Vec3, Vec3)], t_min: f32) -> RayPacket {
     let origins: Vec<Vec3> = rays.iter().map(|r| r.0).collect();
     let dirs: Vec<Vec3> = rays.iter().map(|r| r.1).collect();
     RayPacket::new(V3::gather(&origins), V3::gather(&dirs), F32x8::splat(t_min))

@@ -4,3 +4,4 @@ mod bvh;
 mod bvh_partition;
 mod intersect;
 mod tracer;
+mod watertight;
