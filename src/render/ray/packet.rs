@@ -249,7 +249,8 @@ impl<L: Lane8> Rays<L> {
     }
 
     /// Where each lane's ray meets the triangle within (t_min, `t_max`): the lanes that do, and
-    /// their t, u and v. Möller–Trumbore as [`Triangle::intersect`] does it, lane by lane.
+    /// their t, u and v. Möller–Trumbore as [`Triangle::intersect`] does it, lane by lane, lanes
+    /// near an edge decided again in `f64` as it decides them.
     #[inline(always)]
     fn meet_triangle(&self, tri: &Triangle, t_max: L) -> (L, L, L, L) {
         let n = splat3(tri.n);
