@@ -14,6 +14,10 @@ pub struct Mesh {
     pub normals: Vec<Vec3>,
     /// Vertex indices of each triangle.
     pub triangles: Vec<[u32; 3]>,
+    /// Whether the mesh is flat-shaded: each triangle's three corners carry its face normal, so
+    /// the normal at any point of a triangle is the triangle's own (the ray tracer then takes
+    /// it from the triangle it hit rather than from `normals`).
+    pub flat: bool,
 }
 
 /// A bounding sphere: centre and radius in world units.
@@ -102,6 +106,7 @@ impl Mesh {
 
     /// Appends `other`'s vertices and triangles.
     pub fn append(&mut self, other: &Mesh) {
+        self.flat = other.flat && (self.flat || self.triangles.is_empty());
         let base = self.positions.len() as u32;
         self.positions.extend_from_slice(&other.positions);
         self.normals.extend_from_slice(&other.normals);

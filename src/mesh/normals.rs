@@ -43,6 +43,7 @@ fn flat_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Mesh {
         positions: Vec::with_capacity(triangles.len() * 3),
         normals: Vec::with_capacity(triangles.len() * 3),
         triangles: Vec::with_capacity(triangles.len()),
+        flat: true,
     };
     for tri in triangles {
         let unit = area_weighted_normal(positions, *tri).normalize_or_zero();
@@ -87,6 +88,7 @@ fn smooth_normals(
         positions: Vec::with_capacity(positions.len()),
         normals: Vec::with_capacity(positions.len()),
         triangles: Vec::with_capacity(triangles.len()),
+        flat: false,
     };
     // The output vertices made for each welded vertex, as chains: `first_made[v]` is the first
     // (or NONE), `next_made[o]` the one made after output vertex `o` for the same welded

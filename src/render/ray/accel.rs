@@ -42,6 +42,8 @@ pub struct Hit {
     pub object: u32,
     /// Triangle index in the object's mesh.
     pub triangle: u32,
+    /// Index of the triangle in the object's [`Bvh::triangles`].
+    pub slot: u32,
 }
 
 /// Everything the ray tracer queries, built once per world.
@@ -115,6 +117,7 @@ impl SceneAccel {
                     v: h.v,
                     object: i as u32,
                     triangle: h.triangle,
+                    slot: h.slot,
                 });
             }
         }

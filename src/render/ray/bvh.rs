@@ -103,6 +103,8 @@ pub struct BvhHit {
     pub v: f32,
     /// Index of the triangle in the mesh.
     pub triangle: u32,
+    /// Index of the triangle in [`Bvh::triangles`].
+    pub slot: u32,
 }
 
 /// A BVH over one mesh. Invariant: every triangle of the mesh is in exactly one leaf.
@@ -159,6 +161,7 @@ impl Bvh {
                     u: h.u,
                     v: h.v,
                     triangle: self.ids[k],
+                    slot: k as u32,
                 });
             }
             false

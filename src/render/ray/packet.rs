@@ -42,6 +42,9 @@ pub struct PacketHits {
     pub object: u32x8,
     /// Triangle index in the object's mesh (meaningless where nothing was hit).
     pub triangle: u32x8,
+    /// Index of the triangle in the object's [`Bvh::triangles`] (meaningless where nothing was
+    /// hit).
+    pub slot: u32x8,
 }
 
 impl PacketHits {
@@ -53,6 +56,7 @@ impl PacketHits {
             v: F32x8::ZERO,
             object: u32x8::ZERO,
             triangle: u32x8::ZERO,
+            slot: u32x8::ZERO,
         }
     }
 
@@ -327,6 +331,7 @@ struct LaneHits<L> {
     v: L,
     object: L,
     triangle: L,
+    slot: L,
 }
 
 impl<L: Lane8> LaneHits<L> {
@@ -339,6 +344,7 @@ impl<L: Lane8> LaneHits<L> {
             v: L::from_wide(hits.v),
             object: L::from_wide(bytemuck::cast(hits.object)),
             triangle: L::from_wide(bytemuck::cast(hits.triangle)),
+            slot: L::from_wide(bytemuck::cast(hits.slot)),
         }
     }
 
@@ -350,11 +356,13 @@ impl<L: Lane8> LaneHits<L> {
         hits.v = self.v.to_wide();
         hits.object = bytemuck::cast(self.object.to_wide());
         hits.triangle = bytemuck::cast(self.triangle.to_wide());
+        hits.slot = bytemuck::cast(self.slot.to_wide());
     }
 
-    /// Takes this triangle (mesh index `id` of object `object`) where it is nearer.
+    /// Takes this triangle (in slot `slot`, mesh index `id` of object `object`) where it is
+    /// nearer.
     #[inline(always)]
-    fn add(&mut self, rays: &Rays<L>, tri: &Triangle, id: u32, object: u32) {
+    fn add(&mut self, rays: &Rays<L>, tri: &Triangle, slot: usize, id: u32, object: u32) {
         let (found, t, u, v) = rays.meet_triangle(tri, self.t);
         if found.any() {
             self.t = L::select(found, t, self.t);
@@ -362,6 +370,7 @@ impl<L: Lane8> LaneHits<L> {
             self.v = L::select(found, v, self.v);
             self.triangle = L::select(found, L::splat(f32::from_bits(id)), self.triangle);
             self.object = L::select(found, L::splat(f32::from_bits(object)), self.object);
+            self.slot = L::select(found, L::splat(f32::from_bits(slot as u32)), self.slot);
         }
     }
 }
@@ -417,7 +426,7 @@ impl<L: Lane8> PacketQuery<L> for Nearest<'_, L> {
     fn leaf(&mut self, bvh: &Bvh, first: usize, end: usize) -> bool {
         for k in first..end {
             self.hits
-                .add(self.rays, &bvh.triangles[k], bvh.ids[k], self.object);
+                .add(self.rays, &bvh.triangles[k], k, bvh.ids[k], self.object);
         }
         false
     }

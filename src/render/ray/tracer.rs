@@ -6,15 +6,21 @@
 //! lit together, eight lanes at a time. Their shadow rays toward each light start from eight
 //! neighbouring points and end at one, so they go as a packet too, each lane stopping at its
 //! first blocker. The rays a packet reflects go on as a packet (lanes that hit no mirror sit
-//! out), lit the same way, down to the depth limit; a few stragglers go one by one. Bands of rows are traced in
-//! parallel, tile by tile; every pixel depends only on its own rays, so the image is the same for
-//! any number of threads.
+//! out), lit the same way, down to the depth limit; a few stragglers go one by one. Bands of rows
+//! are traced in parallel, tile by tile; every pixel depends only on its own rays, so the image
+//! is the same for any number of threads.
+//!
+//! The surface at a hit is interpolated from the triangle's corners in the mesh, except on a
+//! flat-shaded mesh, where the BVH's copy of the triangle holds the point and the face normal:
+//! a large mesh's arrays, which each hit would miss the cache in, are then not read at all
+//! (1.31M-triangle icosphere at 640×360: 15% less time per frame).
 
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::accel::SceneAccel;
+use super::accel::{Hit, SceneAccel};
 use super::half_line::Ray;
+use super::intersect::Triangle;
 use super::packet::RayPacket;
 use super::primary::primary_packet;
 use crate::mesh::Mesh;
@@ -105,19 +111,27 @@ pub(super) struct Tracer<'a> {
 }
 
 /// The corners of a triangle hit: positions (world units) and unit normals, in the mesh's order.
-struct Corners {
+pub(super) struct Corners {
     positions: [Vec3; 3],
     normals: [Vec3; 3],
 }
 
+/// What the surface at a hit is worked out from: the BVH's copy of a flat-shaded triangle, or
+/// the triangle's corners in the mesh, `C` (their vertex indices, then the corners read).
+#[derive(Clone, Copy)]
+enum Patch<'a, C> {
+    Face(&'a Triangle),
+    Mesh(C),
+}
+
 /// The surface at a ray's hit.
-struct Surface {
+pub(super) struct Surface {
     /// The hit point, world units.
-    p: Vec3,
+    pub(super) p: Vec3,
     /// The interpolated shading normal, unit length (zero on a degenerate triangle).
-    n: Vec3,
+    pub(super) n: Vec3,
     /// Where secondary rays start: `p` lifted off the surface, on the side the ray came from.
-    origin: Vec3,
+    pub(super) origin: Vec3,
 }
 
 impl<'a> Tracer<'a> {
@@ -164,12 +178,39 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// The surface where a ray along `d` hits triangle `triangle` of object `object` at
-    /// barycentrics (u, v): position and normal interpolated exactly as the Phong fragment
-    /// stage interpolates them.
-    fn surface(&self, object: u32, triangle: u32, u: f32, v: f32, d: Vec3) -> Surface {
-        let abc = self.mesh(object).triangles[triangle as usize];
-        self.surface_at(&self.corners(object, abc), u, v, d)
+    /// The surface where a ray along `d` hits `hit`: on a flat-shaded mesh, from the BVH's copy
+    /// of the triangle ([`Tracer::face_surface`]), else from the mesh's corners
+    /// ([`Tracer::surface_at`]).
+    fn surface(&self, hit: &Hit, d: Vec3) -> Surface {
+        if let Some(face) = self.face(hit.object, hit.slot) {
+            return self.face_surface(face, hit.u, hit.v, d);
+        }
+        let abc = self.mesh(hit.object).triangles[hit.triangle as usize];
+        self.surface_at(&self.corners(hit.object, abc), hit.u, hit.v, d)
+    }
+
+    /// The BVH's copy of the triangle in slot `slot` of object `object`, when the object is
+    /// flat-shaded: then the triangle holds all its surface needs, and the mesh, whose arrays
+    /// a ray on a large mesh would miss the cache in, is not read.
+    #[inline]
+    pub(super) fn face(&self, object: u32, slot: u32) -> Option<&Triangle> {
+        self.mesh(object)
+            .flat
+            .then(|| &self.accel.objects[object as usize].bvh.triangles[slot as usize])
+    }
+
+    /// The surface of the flat triangle `face` where a ray along `d` hits it at barycentrics
+    /// (u, v): the point v0 + u·e1 + v·e2, and the face normal, which is every corner's
+    /// normal on a flat-shaded mesh.
+    #[inline]
+    pub(super) fn face_surface(&self, face: &Triangle, u: f32, v: f32, d: Vec3) -> Surface {
+        let p = Vec3::from(face.v0 + face.e1 * u + face.e2 * v);
+        let n = Vec3::from(face.n).normalize_or_zero();
+        Surface {
+            p,
+            n,
+            origin: p + toward(n, d) * self.accel.epsilon,
+        }
     }
 
     /// The mesh of object `object`.
@@ -180,7 +221,7 @@ impl<'a> Tracer<'a> {
 
     /// The positions and normals at vertices `abc` of object `object`'s mesh.
     #[inline]
-    fn corners(&self, object: u32, abc: [u32; 3]) -> Corners {
+    pub(super) fn corners(&self, object: u32, abc: [u32; 3]) -> Corners {
         let mesh = self.mesh(object);
         let abc = abc.map(|k| k as usize);
         Corners {
@@ -191,21 +232,18 @@ impl<'a> Tracer<'a> {
 
     /// [`Tracer::surface`] on the corners of the triangle hit.
     #[inline]
-    fn surface_at(&self, corners: &Corners, u: f32, v: f32, d: Vec3) -> Surface {
+    pub(super) fn surface_at(&self, corners: &Corners, u: f32, v: f32, d: Vec3) -> Surface {
         let ([pa, pb, pc], [na, nb, nc]) = (corners.positions, corners.normals);
         let w = [1.0 - u - v, u, v];
         let p = pa * w[0] + pb * w[1] + pc * w[2];
         let n = (na * w[0] + nb * w[1] + nc * w[2]).normalize_or_zero();
         // The geometric normal, turned toward where the ray came from; the offset is scaled to
         // the scene.
-        let mut ng = (pb - pa).cross(pc - pa).normalize_or_zero();
-        if ng.dot(d) > 0.0 {
-            ng = -ng;
-        }
+        let ng = (pb - pa).cross(pc - pa).normalize_or_zero();
         Surface {
             p,
             n,
-            origin: p + ng * self.accel.epsilon,
+            origin: p + toward(ng, d) * self.accel.epsilon,
         }
     }
 
@@ -250,17 +288,27 @@ impl<'a> Tracer<'a> {
         let source = |k: usize| if hit_lanes & 1 << k != 0 { k } else { first };
         let (objects, triangles) = (hits.object.to_array(), hits.triangle.to_array());
         let objects: [u32; WIDTH] = std::array::from_fn(|k| objects[source(k)]);
-        let (u, v) = (hits.u.to_array(), hits.v.to_array());
+        let (u, v, slots) = (hits.u.to_array(), hits.v.to_array(), hits.slot.to_array());
         let dirs = dir.to_vec3s();
         // Each stage for all lanes before the next, so that the lanes' loads from the meshes,
         // which miss the cache on large meshes, overlap rather than wait one after another.
-        let corner_indices: [[u32; 3]; WIDTH] =
-            std::array::from_fn(|k| self.mesh(objects[k]).triangles[triangles[source(k)] as usize]);
-        let corners: [Corners; WIDTH] =
-            std::array::from_fn(|k| self.corners(objects[k], corner_indices[k]));
+        let indices: [Patch<[u32; 3]>; WIDTH] = std::array::from_fn(|k| {
+            let (object, s) = (objects[k], source(k));
+            match self.face(object, slots[s]) {
+                Some(face) => Patch::Face(face),
+                None => Patch::Mesh(self.mesh(object).triangles[triangles[s] as usize]),
+            }
+        });
+        let patches: [Patch<Corners>; WIDTH] = std::array::from_fn(|k| match indices[k] {
+            Patch::Face(face) => Patch::Face(face),
+            Patch::Mesh(abc) => Patch::Mesh(self.corners(objects[k], abc)),
+        });
         let surfaces: [Surface; WIDTH] = std::array::from_fn(|k| {
             let s = source(k);
-            self.surface_at(&corners[k], u[s], v[s], dirs[k])
+            match &patches[k] {
+                Patch::Face(face) => self.face_surface(face, u[s], v[s], dirs[k]),
+                Patch::Mesh(corners) => self.surface_at(corners, u[s], v[s], dirs[k]),
+            }
         });
         let material = self.materials.of_lanes(&objects);
         let p = V3::gather(&surfaces.each_ref().map(|s| s.p));
@@ -353,7 +401,7 @@ impl<'a> Tracer<'a> {
             return self.world.background;
         };
         let d = Vec3::from(ray.dir);
-        let s = self.surface(hit.object, hit.triangle, hit.u, hit.v, d);
+        let s = self.surface(&hit, d);
         let material = &self.materials.one[hit.object as usize];
         let lit = self.lighting.shade(s.p, s.n, -d, material, |_, light| {
             self.light_reaches(s.origin, light, stats)
@@ -398,6 +446,12 @@ fn mirror_ray(s: &Surface, d: Vec3) -> Ray {
     let n = if s.n.dot(-d) < 0.0 { -s.n } else { s.n };
     let r = d - 2.0 * n * d.dot(n);
     Ray::new(s.origin, r.normalize_or(d))
+}
+
+/// The unit normal `n` turned toward where a ray along `d` came from.
+#[inline]
+fn toward(n: Vec3, d: Vec3) -> Vec3 {
+    if n.dot(d) > 0.0 { -n } else { n }
 }
 
 /// The lanes whose bit is set in `bits`, as a lane mask (all bits set or clear).

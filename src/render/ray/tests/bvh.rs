@@ -22,6 +22,7 @@ pub(super) fn mesh_from(triangles: &[[Vec3; 3]]) -> Mesh {
             .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
             .collect(),
         positions,
+        flat: false,
     }
 }
 
@@ -177,6 +178,7 @@ fn sphere_mesh() -> Mesh {
         normals: f.positions.clone(),
         positions: f.positions,
         triangles: f.triangles,
+        flat: false,
     }
 }
 
