@@ -27,6 +27,10 @@ pub struct WorldObject {
     pub material: Material,
     /// Sphere enclosing the mesh: the first cull of the ray tracer.
     pub bounds: Sphere,
+    /// The mesh's axis-aligned bounds (min, max), world units; `None` for an empty mesh. Kept
+    /// so that the scene's bounds need no pass over every vertex (the 1.31M-triangle icosphere
+    /// has 3.9M vertices: 8–12 ms on one thread).
+    pub extent: Option<(glam::Vec3, glam::Vec3)>,
     /// The mesh's distinct positions, which the Z-buffer projects once each per frame; built with
     /// the object and kept matching `mesh`.
     pub unique: UniquePositions,
@@ -35,8 +39,10 @@ pub struct WorldObject {
 impl WorldObject {
     /// An object of `mesh` and `material`, with its bounds and distinct positions.
     pub fn new(mesh: Mesh, material: Material) -> WorldObject {
+        let extent = mesh.bounds();
         WorldObject {
-            bounds: mesh.bounding_sphere(),
+            bounds: mesh.bounding_sphere(extent),
+            extent,
             unique: UniquePositions::of(&mesh),
             mesh,
             material,
@@ -252,7 +258,7 @@ impl World {
     pub fn bounds(&self) -> Option<(glam::Vec3, glam::Vec3)> {
         self.objects
             .iter()
-            .filter_map(|o| o.mesh.bounds())
+            .filter_map(|o| o.extent)
             .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
     }
 }

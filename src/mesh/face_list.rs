@@ -76,9 +76,10 @@ impl Mesh {
         )
     }
 
-    /// A sphere enclosing every vertex: centred on the bounds' centre.
-    pub fn bounding_sphere(&self) -> Sphere {
-        let Some((lo, hi)) = self.bounds() else {
+    /// A sphere enclosing every vertex, centred on the centre of `bounds`, which are this
+    /// mesh's [`Mesh::bounds`].
+    pub fn bounding_sphere(&self, bounds: Option<(Vec3, Vec3)>) -> Sphere {
+        let Some((lo, hi)) = bounds else {
             return Sphere {
                 center: Vec3::ZERO,
                 radius: 0.0,

@@ -64,23 +64,14 @@ impl SceneAccel {
     /// build does not wait for it.
     pub fn build(world: &World, progress: &Progress) -> Result<SceneAccel, Cancelled> {
         let started = Instant::now();
-        // The scene's bounds read every vertex on one thread (8–12 ms for the 1.31M-triangle
-        // icosphere, 3% of its build): they are measured beside the builds, which need the
-        // epsilon only for the spheres at the end.
-        let (radius, bvhs) = rayon::join(
-            || {
-                world
-                    .bounds()
-                    .map_or(1.0, |(lo, hi)| 0.5 * (hi - lo).length())
-            },
-            || {
-                world
-                    .objects
-                    .par_iter()
-                    .map(|o| Bvh::build_cancellable(&o.mesh, progress))
-                    .collect::<Result<Vec<_>, Cancelled>>()
-            },
-        );
+        let bvhs = world
+            .objects
+            .par_iter()
+            .map(|o| Bvh::build_cancellable(&o.mesh, progress))
+            .collect::<Result<Vec<_>, Cancelled>>();
+        let radius = world
+            .bounds()
+            .map_or(1.0, |(lo, hi)| 0.5 * (hi - lo).length());
         let epsilon = EPSILON_SCALE * radius.max(f32::MIN_POSITIVE);
         let objects = world
             .objects
