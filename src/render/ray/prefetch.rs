@@ -1,6 +1,7 @@
 //! Cache prefetch hints: the BVH walk asks for the next nodes and triangles it may read while it
 //! still tests the current ones, so that on large meshes (whose tree does not fit in the cache)
-//! the loads overlap instead of waiting one after another.
+//! the loads overlap instead of waiting one after another; the BVH build, laying the triangles
+//! out in leaf order, asks for the mesh data of the ones a few places ahead.
 //!
 //! Measured gain, the reason for the `unsafe` here: see [`ahead`].
 #![allow(unsafe_code)]
