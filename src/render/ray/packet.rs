@@ -43,7 +43,9 @@ pub struct PacketHits {
     /// Triangle index in the object's mesh (meaningless where nothing was hit).
     pub triangle: u32x8,
     /// Index of the triangle in the object's [`Bvh::triangles`] (meaningless where nothing was
-    /// hit).
+    /// hit). Carried beside `triangle`, which `Bvh::ids[slot]` would give, so that neither the
+    /// tracer's flat-mesh path (the BVH's triangle, by slot) nor its smooth-mesh path (the
+    /// mesh's corners, by index) waits on a load the other needs.
     pub slot: u32x8,
 }
 
