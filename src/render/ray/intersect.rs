@@ -10,16 +10,19 @@ use super::half_line::Ray;
 pub(crate) const PARALLEL_COS: f32 = 1.0e-6;
 
 /// A triangle prepared for intersection: one 64-byte cache line.
+///
+/// It keeps its three vertices rather than two edges: an edge rounded to `f32` moves the vertex
+/// it leads to, so the two triangles on either side of a mesh edge would each see the edge a
+/// little elsewhere, and a ray aimed at the edge could pass between them (the `f64` decision of
+/// [`Triangle::intersect_exact`] needs the vertices themselves).
 #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C)]
 pub struct Triangle {
-    /// First vertex.
+    /// The vertices.
     pub v0: Vec3A,
-    /// Edge v1 − v0.
-    pub e1: Vec3A,
-    /// Edge v2 − v0.
-    pub e2: Vec3A,
-    /// Geometric normal e1 × e2, not normalised (its length is twice the area).
+    pub v1: Vec3A,
+    pub v2: Vec3A,
+    /// Geometric normal e1 × e2 in `f32`, not normalised (its length is twice the area).
     pub n: Vec3A,
 }
 
@@ -42,10 +45,22 @@ impl Triangle {
         let (e1, e2) = (b - a, c - a);
         Triangle {
             v0: a,
-            e1,
-            e2,
+            v1: b,
+            v2: c,
             n: e1.cross(e2),
         }
+    }
+
+    /// Edge v1 − v0 in `f32`.
+    #[inline(always)]
+    pub fn e1(&self) -> Vec3A {
+        self.v1 - self.v0
+    }
+
+    /// Edge v2 − v0 in `f32`.
+    #[inline(always)]
+    pub fn e2(&self) -> Vec3A {
+        self.v2 - self.v0
     }
 
     /// The nearest hit of `ray` with t in (t_min, t_max). Points on edges and vertices count as
@@ -67,8 +82,8 @@ impl Triangle {
             return None;
         }
         let q = to_origin.cross(ray.dir);
-        let u = self.e2.dot(q) * inv_det;
-        let v = -self.e1.dot(q) * inv_det;
+        let u = self.e2().dot(q) * inv_det;
+        let v = -self.e1().dot(q) * inv_det;
         if near_edge(u, v) {
             return self.intersect_exact(ray.origin, ray.dir, t_min, t_max);
         }
@@ -83,7 +98,9 @@ impl Triangle {
     /// vertex (see [`near_edge`]): the rounding of `f32` there can leave a point of a shared edge
     /// outside both of its triangles, and a ray would pass through a closed surface (a
     /// 1.31M-triangle sphere seen from 3.7 radii: barycentrics off by 4·10⁻⁶). In `f64` the error
-    /// is about 10⁻¹³ of that.
+    /// is about 10⁻¹³ of that, and the edges come from the vertices themselves (the difference
+    /// of two `f32` within 2^28 of each other's magnitude is exact in `f64`), so both triangles
+    /// of a mesh edge see the same edge.
     #[cold]
     pub(super) fn intersect_exact(
         &self,
@@ -92,8 +109,9 @@ impl Triangle {
         t_min: f32,
         t_max: f32,
     ) -> Option<TriangleHit> {
-        let (e1, e2) = (self.e1.as_dvec3(), self.e2.as_dvec3());
-        let (dir, to_origin) = (dir.as_dvec3(), (origin.as_dvec3() - self.v0.as_dvec3()));
+        let v0 = self.v0.as_dvec3();
+        let (e1, e2) = (self.v1.as_dvec3() - v0, self.v2.as_dvec3() - v0);
+        let (dir, to_origin) = (dir.as_dvec3(), (origin.as_dvec3() - v0));
         let n = e1.cross(e2);
         let det = -dir.dot(n);
         if det == 0.0 {

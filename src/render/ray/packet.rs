@@ -277,8 +277,8 @@ impl<L: Lane8> Rays<L> {
             o[2] * d[0] - o[0] * d[2],
             o[0] * d[1] - o[1] * d[0],
         ];
-        let u = dot(splat3(tri.e2), q) * inv_det;
-        let v = dot(splat3(tri.e1), q).negate() * inv_det;
+        let u = dot(splat3(tri.e2()), q) * inv_det;
+        let v = dot(splat3(tri.e1()), q).negate() * inv_det;
         let zero = L::splat(0.0);
         let inside = u.ge(zero) & v.ge(zero) & (u + v).le(L::splat(1.0));
         let nearer = t.gt(self.t_min) & t.lt(t_max);

@@ -204,7 +204,7 @@ impl<'a> Tracer<'a> {
     /// normal on a flat-shaded mesh.
     #[inline]
     pub(super) fn face_surface(&self, face: &Triangle, u: f32, v: f32, d: Vec3) -> Surface {
-        let p = Vec3::from(face.v0 + face.e1 * u + face.e2 * v);
+        let p = Vec3::from(face.v0 + face.e1() * u + face.e2() * v);
         let n = Vec3::from(face.n).normalize_or_zero();
         Surface {
             p,
