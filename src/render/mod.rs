@@ -13,6 +13,7 @@ mod error;
 mod frame;
 mod materials;
 mod options;
+mod prefetch;
 mod prepared;
 mod progress;
 mod raster;

@@ -1,9 +1,9 @@
 //! Z-buffer with Gouraud shading: light the vertices, interpolate the colour.
 //!
-//! Only vertices of triangles that survive setup are lit: at the editor's preview size most
-//! triangles of a real mesh cover no pixel centre. Where most of an object's vertices were
-//! needed in the last frame, the whole object is lit at once, in order, beside the vertex
-//! stage.
+//! Only vertices of triangles that a band shows are lit: at the editor's preview size most
+//! triangles of a real mesh cover no pixel centre, and of those that do, about half are hidden
+//! behind others. Where most of an object's vertices were needed in the last frame, the whole
+//! object is lit at once, in order, beside the vertex stage.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -13,6 +13,7 @@ use super::varying::Varying;
 use super::zbuffer::draw;
 use crate::render::camera::View;
 use crate::render::materials::{MaterialLanes, ObjectMaterials};
+use crate::render::prefetch;
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::shading::Lighting;
 use crate::render::simd::{F32x8, V3, WIDTH};
@@ -124,6 +125,13 @@ impl Varying for LitVertices<'_> {
             return;
         }
         let material = &self.materials.lanes[object];
+        // All the loads first, so that the misses overlap.
+        for &t in triangles {
+            for i in mesh.triangles[t as usize] {
+                prefetch::ahead(&mesh.positions[i as usize]);
+                prefetch::ahead(&mesh.normals[i as usize]);
+            }
+        }
         let start = out.len();
         out.resize(start + triangles.len(), [Vec3::ZERO; 3]);
         let colors: &mut [Vec3] = bytemuck::cast_slice_mut(&mut out[start..]);
@@ -151,5 +159,9 @@ impl Varying for LitVertices<'_> {
             let lit = self.light(material, gather(&mesh.positions), gather(&mesh.normals));
             colors.copy_from_slice(&lit.to_vec3s()[..colors.len()]);
         }
+    }
+
+    fn prefetch(&self, object: usize, triangle: u32) {
+        prefetch::ahead(&self.world.objects[object].mesh.triangles[triangle as usize]);
     }
 }

@@ -17,12 +17,12 @@ use crate::render::camera::{NEAR, View};
 use crate::render::simd::WIDTH;
 
 /// A triangle ready for scan conversion: snapped, counter-clockwise in fixed point, with the
-/// screen-space plane of its interpolants.
+/// screen-space plane of its 1/w, which the depth test needs. The planes of its varying are set
+/// up only if it is seen ([`Corners::planes`]).
 ///
-/// The interpolants are (varying·1/w, 1/w): both are affine in screen space, so each is a plane
-/// `at_ref + per_x·(x − ref_x) + per_y·(y − ref_y)` over pixel centres, and dividing by the
-/// fourth gives the perspective-correct varying. The reference is the pixel holding vertex 0, so
-/// strips of an image evaluate the planes exactly as the whole image does.
+/// 1/w is affine in screen space: a plane `at_ref + per_x·(x − ref_x) + per_y·(y − ref_y)` over
+/// pixel centres. The reference is the pixel holding vertex 0, so strips of an image evaluate
+/// the plane exactly as the whole image does.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ScreenTriangle {
     /// Vertex pixel coordinates in 1/256 pixel.
@@ -36,11 +36,36 @@ pub struct ScreenTriangle {
     /// The reference pixel.
     pub ref_x: i32,
     pub ref_y: i32,
-    /// Interpolants at the reference pixel's centre, and their change per pixel right and down.
-    /// The varying's three (x, y, z) are zero until [`ScreenTriangle::set_varying`].
+    /// 1/w at the reference pixel's centre, and its change per pixel right and down.
+    pub inv_w: DepthPlane,
+    pub object: u32,
+    /// The mesh triangle it came from, an index into its object's triangles.
+    pub triangle: u32,
+    /// Where the triangle's [`Corners`] are: the setup task that made it, and its place there.
+    pub chunk: u32,
+    pub slot: u32,
+}
+
+/// The plane of 1/w over pixel centres: its value at the reference pixel and its steps.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct DepthPlane {
+    pub at_ref: f32,
+    pub per_x: f32,
+    pub per_y: f32,
+}
+
+/// The planes of a seen triangle's interpolants (varying·1/w, 1/w), each
+/// `at_ref + per_x·(x − ref_x) + per_y·(y − ref_y)` over pixel centres: dividing the first three
+/// by the fourth gives the perspective-correct varying. The fourth is the triangle's
+/// [`DepthPlane`], bit for bit.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Planes {
     pub at_ref: Vec4,
     pub per_x: Vec4,
     pub per_y: Vec4,
+    /// The triangle's reference pixel and object.
+    pub ref_x: i32,
+    pub ref_y: i32,
     pub object: u32,
 }
 
@@ -48,8 +73,6 @@ pub struct ScreenTriangle {
 /// the planes of its varying needs.
 #[derive(Debug, Clone, Copy)]
 pub struct Corners {
-    /// The mesh triangle, an index into its object's triangles.
-    pub triangle: u32,
     /// 1/w at each screen vertex.
     pub inv_w: [f64; 3],
     /// Barycentrics of each screen vertex on the mesh triangle (weights of its vertices 1
@@ -351,13 +374,17 @@ fn emit(
         max_y,
         ref_x,
         ref_y,
-        at_ref: Vec4::new(0.0, 0.0, 0.0, at as f32),
-        per_x: Vec4::new(0.0, 0.0, 0.0, per_x as f32),
-        per_y: Vec4::new(0.0, 0.0, 0.0, per_y as f32),
+        inv_w: DepthPlane {
+            at_ref: at as f32,
+            per_x: per_x as f32,
+            per_y: per_y as f32,
+        },
         object,
+        triangle,
+        chunk: 0,
+        slot: corners.len() as u32,
     });
     corners.push(Corners {
-        triangle,
         inv_w,
         bary,
         weights,
@@ -412,29 +439,51 @@ impl Weights {
 }
 
 impl ScreenTriangle {
-    /// (varying·1/w, 1/w) at the centre of pixel (x, y).
+    /// 1/w at the centre of pixel (x, y).
     #[inline(always)]
-    pub fn interpolants(&self, x: i32, y: i32) -> Vec4 {
+    pub fn inv_w_at(&self, x: i32, y: i32) -> f32 {
+        let plane = &self.inv_w;
+        plane.at_ref + plane.per_x * (x - self.ref_x) as f32 + plane.per_y * (y - self.ref_y) as f32
+    }
+}
+
+impl Planes {
+    /// (varying·1/w, 1/w) at the centre of pixel (x, y). Its 1/w is
+    /// [`ScreenTriangle::inv_w_at`]'s, bit for bit.
+    #[inline(always)]
+    pub fn at(&self, x: i32, y: i32) -> Vec4 {
         self.at_ref + self.per_x * (x - self.ref_x) as f32 + self.per_y * (y - self.ref_y) as f32
     }
+}
 
-    /// Sets up the planes of varying·1/w, given the varying at the mesh triangle's three
-    /// vertices, `values`, and where this triangle's vertices lie on it, `corners`. The varying
-    /// of a clipped vertex is interpolated from the mesh triangle's.
+impl Corners {
+    /// The planes of screen triangle `t`'s interpolants, given the varying at its mesh
+    /// triangle's three vertices, `values` (`self` are `t`'s corners). The varying of a clipped
+    /// vertex is interpolated from the mesh triangle's.
     #[inline]
-    pub fn set_varying(&mut self, corners: &Corners, values: [Vec3; 3]) {
+    pub fn planes(&self, t: &ScreenTriangle, values: [Vec3; 3]) -> Planes {
         let [a0, a1, a2] = values.map(|a| a.as_dvec3());
         let scaled: [DVec3; 3] = std::array::from_fn(|k| {
-            let b = corners.bary[k].as_dvec2();
+            let b = self.bary[k].as_dvec2();
             let varying = a0 + (a1 - a0) * b.x + (a2 - a0) * b.y;
-            varying * corners.inv_w[k]
+            varying * self.inv_w[k]
         });
-        let weights = &corners.weights;
+        let (mut at_ref, mut per_x, mut per_y) = (Vec4::ZERO, Vec4::ZERO, Vec4::ZERO);
         for c in 0..3 {
-            let (at, per_x, per_y) = weights.plane(scaled.map(|v| v[c]));
-            self.at_ref[c] = at as f32;
-            self.per_x[c] = per_x as f32;
-            self.per_y[c] = per_y as f32;
+            let (at, step_x, step_y) = self.weights.plane(scaled.map(|v| v[c]));
+            at_ref[c] = at as f32;
+            per_x[c] = step_x as f32;
+            per_y[c] = step_y as f32;
+        }
+        let depth = &t.inv_w;
+        (at_ref.w, per_x.w, per_y.w) = (depth.at_ref, depth.per_x, depth.per_y);
+        Planes {
+            at_ref,
+            per_x,
+            per_y,
+            ref_x: t.ref_x,
+            ref_y: t.ref_y,
+            object: t.object,
         }
     }
 }

@@ -1,7 +1,8 @@
 //! A frame's geometry, from meshes to binned screen triangles: the vertex stage once per distinct
 //! position (a flat-shaded mesh repeats each position per face; the projection is the same),
-//! triangle setup in parallel chunks, the planes of the varying for the triangles that remain,
-//! and bins of rows, each chunk binning its own triangles. Everything lives in a
+//! triangle setup in parallel chunks, and bins of rows, each chunk binning its own triangles.
+//! The planes of the varying wait until a band has found which triangles it shows
+//! ([`Corners::planes`]). Everything lives in a
 //! [`RasterScratch`] kept from frame to frame, so a preview of the same world allocates nothing
 //! that grows with the mesh.
 
@@ -9,7 +10,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::projected::{ProjectedVertices, project};
-use super::screen_triangle::{Corners, ScreenTriangle, may_cover, setup_triangle};
+use super::screen_triangle::{Corners, Planes, ScreenTriangle, may_cover, setup_triangle};
 use super::varying::Varying;
 use crate::render::camera::View;
 use crate::render::simd::WIDTH;
@@ -68,6 +69,15 @@ pub struct BandBuffers {
     pub depth: Vec<f32>,
     /// Number + 1 in the band's bin of the triangle that drew the pixel (0 = nothing).
     pub id: Vec<u32>,
+    /// Per id, whether the band shows the triangle (entry 0, no triangle, is unused).
+    pub seen: Vec<bool>,
+    /// Per id, the planes of a seen triangle's interpolants (entries of unseen ones are stale).
+    pub planes: Vec<Planes>,
+    /// Working space for the planes: the mesh triangles of a run of seen triangles of one
+    /// object, their ids, and the varying at their corners.
+    pub mesh_triangles: Vec<u32>,
+    pub ids: Vec<u32>,
+    pub values: Vec<[Vec3; 3]>,
 }
 
 /// One setup task: triangles `start..end` of one object, and what they became.
@@ -78,9 +88,6 @@ struct SetupChunk {
     end: usize,
     triangles: Vec<ScreenTriangle>,
     corners: Vec<Corners>,
-    /// Working space for the planes of the varying.
-    mesh_triangles: Vec<u32>,
-    values: Vec<[Vec3; 3]>,
     /// The chunk's screen triangles that meet each band of rows, band after band, each band's
     /// in triangle order: band b's are `binned[bin_starts[b]..bin_starts[b + 1]]`.
     /// Copies, so that a band reads its triangles in sequence rather than scattered across the
@@ -107,17 +114,24 @@ impl<'a> Bands<'a> {
             &c.binned[c.bin_starts[band] as usize..c.bin_starts[band + 1] as usize]
         })
     }
+
+    /// Where screen triangle `t` lies on its mesh triangle.
+    #[inline]
+    pub fn corners(&self, t: &ScreenTriangle) -> &'a Corners {
+        &self.chunks[t.chunk as usize].corners[t.slot as usize]
+    }
 }
 
 impl Geometry {
     /// Sets up every triangle of `world` seen through `view`, in object then triangle order,
-    /// with the planes of `varying`, and bins them into bands of rows; returns the bands.
+    /// and bins them into bands of rows; returns the bands. `varying` is prepared for the
+    /// planes the bands will ask of it.
     ///
     /// Once a frame of the world was set up, two parallel passes: the vertex stage (with
     /// `varying`'s per-object work beside it, planned by the last frame's survivors), then one
-    /// pass per setup chunk that tests, sets up, shades the corners of and bins its triangles.
-    /// A small frame thus wakes the render threads twice rather than once per stage. The first
-    /// frame plans the varying's work by its own survivors, between two passes.
+    /// pass per setup chunk that tests, sets up and bins its triangles. A small frame thus
+    /// wakes the render threads twice rather than once per stage. The first frame plans the
+    /// varying's work by its own survivors, between two passes.
     pub fn set_up(&mut self, world: &World, view: &View, varying: &mut dyn Varying) -> Bands<'_> {
         let planned = self.survivors.len() == world.objects.len();
         let projected = &mut self.projected;
@@ -134,18 +148,13 @@ impl Geometry {
         let rows = band_rows(view.width, view.height);
         let bands = view.height.div_ceil(rows) as usize;
         let projected = &self.projected;
-        if planned {
-            let varying = &*varying;
-            self.chunks.par_iter_mut().for_each(|chunk| {
+        self.chunks
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(k, chunk)| {
                 chunk.set_up(world, view, &projected[chunk.object]);
-                chunk.set_varying(varying);
-                chunk.bin(rows, bands);
+                chunk.bin(k as u32, rows, bands);
             });
-        } else {
-            self.chunks
-                .par_iter_mut()
-                .for_each(|chunk| chunk.set_up(world, view, &projected[chunk.object]));
-        }
         self.survivors.clear();
         self.survivors.resize(world.objects.len(), 0);
         for chunk in &self.chunks {
@@ -153,11 +162,6 @@ impl Geometry {
         }
         if !planned {
             varying.prepare(&self.survivors);
-            let varying = &*varying;
-            self.chunks.par_iter_mut().for_each(|chunk| {
-                chunk.set_varying(varying);
-                chunk.bin(rows, bands);
-            });
         }
         Bands {
             rows,
@@ -238,25 +242,9 @@ impl SetupChunk {
         }
     }
 
-    /// Sets up the planes of `varying` on the chunk's screen triangles.
-    fn set_varying(&mut self, varying: &dyn Varying) {
-        self.mesh_triangles.clear();
-        self.mesh_triangles
-            .extend(self.corners.iter().map(|c| c.triangle));
-        self.values.clear();
-        varying.corners(self.object, &self.mesh_triangles, &mut self.values);
-        for ((t, corners), values) in self
-            .triangles
-            .iter_mut()
-            .zip(&self.corners)
-            .zip(&self.values)
-        {
-            t.set_varying(corners, *values);
-        }
-    }
-
-    /// Bins the chunk's screen triangles into `bands` bands of `rows` rows, in triangle order.
-    fn bin(&mut self, rows: u32, bands: usize) {
+    /// Bins the chunk's screen triangles into `bands` bands of `rows` rows, in triangle order;
+    /// the chunk is number `chunk` of the frame's.
+    fn bin(&mut self, chunk: u32, rows: u32, bands: usize) {
         let reach = |t: &ScreenTriangle| {
             (t.min_y as u32 / rows) as usize..=(t.max_y as u32 / rows) as usize
         };
@@ -280,7 +268,7 @@ impl SetupChunk {
         next.extend_from_slice(&self.bin_starts);
         for t in &self.triangles {
             for band in reach(t) {
-                self.binned[next[band] as usize] = *t;
+                self.binned[next[band] as usize] = ScreenTriangle { chunk, ..*t };
                 next[band] += 1;
             }
         }

@@ -115,10 +115,9 @@ fn a_finely_tessellated_face_covers_every_pixel_exactly_once() {
     }
 }
 
-#[test]
-fn a_closed_icosahedron_covers_each_inner_pixel_exactly_twice() {
-    // Front and back faces both cover each pixel inside the silhouette: no more, no fewer.
-    let scene = scene(
+/// A finely subdivided icosahedron (1,280 faces) seen from outside, a little off its axis.
+fn closed_icosahedron() -> Scene {
+    scene(
         r#"
 [camera]
 position = [0.3, 0.2, 4.0]
@@ -127,7 +126,13 @@ type = "icosahedron"
 radius = 1.0
 subdivisions = 3
 "#,
-    );
+    )
+}
+
+#[test]
+fn a_closed_icosahedron_covers_each_inner_pixel_exactly_twice() {
+    // Front and back faces both cover each pixel inside the silhouette: no more, no fewer.
+    let scene = closed_icosahedron();
     let world = world(&scene);
     let view = View::new(&scene.camera, 120, 100);
     let counts = coverage_counts(&world, &view);
@@ -254,6 +259,79 @@ fn strips_rendered_separately_join_into_the_whole_image() {
         assert_eq!(
             differing, 0,
             "{algorithm}: {differing} pixels differ between strips and the whole"
+        );
+    }
+}
+
+/// A varying that records which triangles' corners it is asked for, and gives each triangle's
+/// three corners its own index as the value: a pixel's interpolated varying then names the
+/// triangle that drew it.
+#[derive(Default)]
+struct Recorder {
+    asked: std::sync::Mutex<Vec<u32>>,
+}
+
+impl super::varying::Varying for Recorder {
+    fn corners(&self, object: usize, triangles: &[u32], out: &mut Vec<[Vec3; 3]>) {
+        assert_eq!(object, 0, "one object");
+        self.asked.lock().expect("lock").extend(triangles);
+        out.extend(triangles.iter().map(|&t| [Vec3::splat(t as f32); 3]));
+    }
+}
+
+#[test]
+fn only_the_triangles_a_frame_shows_have_their_varying_worked_out() {
+    // A closed icosahedron: its back faces cover as many pixel centres as its front faces, and
+    // all are hidden. The planes of the varying must be set up for exactly the triangles that
+    // win some pixel, in every band (threads and band edges included).
+    let scene = closed_icosahedron();
+    let world = world(&scene);
+    for (width, height) in [(160, 96), (61, 203)] {
+        let view = View::new(&scene.camera, width, height);
+        let mut recorder = Recorder::default();
+        let mut drawn = vec![Vec3::NAN; (width * height) as usize];
+        draw(
+            &mut Geometry::default(),
+            &world,
+            &view,
+            &Progress::new(),
+            &mut recorder,
+            |fragments: &Fragments, row: &mut [Vec3]| fragments.write(fragments.varying, row),
+            &mut drawn,
+        )
+        .expect("draw");
+        let shown: std::collections::BTreeSet<u32> = drawn
+            .iter()
+            .filter(|c| *c != &world.background)
+            .map(|c| {
+                let t = c.x.round();
+                assert!(
+                    (c.x - t).abs() < 0.01,
+                    "a constant varying stays constant: {c}"
+                );
+                t as u32
+            })
+            .collect();
+        let asked: std::collections::BTreeSet<u32> = recorder
+            .asked
+            .lock()
+            .expect("lock")
+            .iter()
+            .copied()
+            .collect();
+        assert!(
+            shown.len() > 200,
+            "the front shows many triangles ({})",
+            shown.len()
+        );
+        assert_eq!(
+            asked, shown,
+            "{width}×{height}: asked for hidden or missed shown triangles"
+        );
+        let triangles = world.objects[0].mesh.triangles.len();
+        assert!(
+            asked.len() < triangles * 6 / 10,
+            "the back faces were not asked for"
         );
     }
 }

@@ -4,10 +4,12 @@
 //! space, fixed-point snapping, bounding box, and the screen-space planes of the interpolants
 //! (varying·1/w, 1/w)) → binning into row bands → per band, in triangle order: coverage by exact
 //! integer edge functions with the top-left rule, and a depth test on 1/w that keeps the nearest
-//! triangle per pixel → per row, the covered pixels go to the shader eight at a time
-//! ([`Fragments`]) with their depth and perspective-correct varying. Each pixel is shaded once,
-//! however much overdraw the scene has, and Gouraud and Phong differ only in the varying they
-//! interpolate (a lit vertex colour, or a normal).
+//! triangle per pixel → the planes of the varying for the triangles the band shows, and only
+//! those → per row, the covered pixels go to the shader eight at a time ([`Fragments`]) with
+//! their depth and perspective-correct varying. Each pixel is shaded once, however much
+//! overdraw the scene has; a hidden triangle's varying is never worked out (at the preview's
+//! size, half of the triangles that cover a pixel centre are behind others); and Gouraud and
+//! Phong differ only in the varying they interpolate (a lit vertex colour, or a normal).
 //!
 //! Bands run in parallel; each band's result depends only on the triangle order, so the output is
 //! the same for any number of threads.
@@ -16,11 +18,12 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::fragments::{Fragments, Packer};
-use super::screen_triangle::ScreenTriangle;
-use super::setup::{BandBuffers, Geometry};
+use super::screen_triangle::{Planes, ScreenTriangle};
+use super::setup::{BandBuffers, Bands, Geometry};
 use super::spans::{fits_lanes, for_each_block, solved_spans};
 use super::varying::Varying;
 use crate::render::camera::View;
+use crate::render::prefetch;
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::simd::{F32x8, WIDTH, load};
 use crate::world::World;
@@ -48,6 +51,7 @@ pub fn draw(
     let mut pool = std::mem::take(&mut geometry.band_buffers);
     pool.resize_with(threads, Default::default);
     let bands = geometry.set_up(world, view, varying);
+    let varying = &*varying;
     let drawn = out
         .par_chunks_mut((bands.rows * width) as usize)
         .enumerate()
@@ -60,7 +64,8 @@ pub fn draw(
             // band would draw into fresh ones rather than wait.
             let mut held = pool[thread].try_lock().ok();
             let mut fresh = BandBuffers::default();
-            let BandBuffers { depth, id } = held.as_deref_mut().unwrap_or(&mut fresh);
+            let buffers = held.as_deref_mut().unwrap_or(&mut fresh);
+            let BandBuffers { depth, id, .. } = buffers;
             // A block of eight lanes may start at any pixel: the buffers run on past the band.
             depth.clear();
             depth.resize(rows.len() + WIDTH, 0.0);
@@ -69,18 +74,94 @@ pub fn draw(
             triangles.clear();
             let bin = bands.triangles(band).inspect(|t| triangles.push(*t));
             scan_band(bin, width, top, band_rows, depth, id);
+            mark_seen(
+                &buffers.id[..rows.len()],
+                triangles.len(),
+                &mut buffers.seen,
+            );
+            set_planes(triangles, &bands, varying, buffers);
             for (r, out) in rows.chunks_mut(width as usize).enumerate() {
                 let y = top + r as u32;
                 let start = r * width as usize;
                 // The row's ids and the next row's (or the padding): runs are found in lanes.
-                let ids = &id[start..start + width as usize + WIDTH];
-                shade_row(triangles, ids, y, world.background, &shade, out);
+                let ids = &buffers.id[start..start + width as usize + WIDTH];
+                shade_row(&buffers.planes, ids, y, world.background, &shade, out);
             }
             progress.advance(band_rows as u64);
             Ok(())
         });
     geometry.band_buffers = pool;
     drawn
+}
+
+/// Sets `seen[id]` for each id in `ids` and clears it for the other ids up to `count` (ids of
+/// the band's bin, 1-based; 0 = no triangle). Eight ids at a time: inside a triangle's span
+/// the eight are one id.
+fn mark_seen(ids: &[u32], count: usize, seen: &mut Vec<bool>) {
+    seen.clear();
+    seen.resize(count + 1, false);
+    let mut blocks = ids.chunks_exact(WIDTH);
+    for block in &mut blocks {
+        let block: [u32; WIDTH] = block.try_into().expect("lanes");
+        let first = i32x8::splat(block[0] as i32);
+        if bytemuck::cast::<_, i32x8>(block).cmp_eq(first).all() {
+            seen[block[0] as usize] = true;
+        } else {
+            block.iter().for_each(|&id| seen[id as usize] = true);
+        }
+    }
+    blocks
+        .remainder()
+        .iter()
+        .for_each(|&id| seen[id as usize] = true);
+}
+
+/// Sets up `buffers.planes[id]` for each id the band shows (`buffers.seen`) of its bin
+/// `triangles`: the varying at the corners of each run of seen triangles of one object is
+/// asked of `varying` at once.
+fn set_planes(
+    triangles: &[&ScreenTriangle],
+    bands: &Bands,
+    varying: &dyn Varying,
+    buffers: &mut BandBuffers,
+) {
+    let BandBuffers {
+        seen,
+        planes,
+        mesh_triangles,
+        ids,
+        values,
+        ..
+    } = buffers;
+    if planes.len() <= triangles.len() {
+        planes.resize(triangles.len() + 1, Planes::default());
+    }
+    let mut next = 0;
+    while next < triangles.len() {
+        let object = triangles[next].object;
+        mesh_triangles.clear();
+        ids.clear();
+        values.clear();
+        while let Some(t) = triangles.get(next).filter(|t| t.object == object) {
+            next += 1;
+            if seen[next] {
+                ids.push(next as u32);
+                mesh_triangles.push(t.triangle);
+                // Read below, once the varying is known: at 1920×1080 they are scattered
+                // over megabytes.
+                prefetch::ahead_all(bands.corners(t));
+                varying.prefetch(object as usize, t.triangle);
+            }
+        }
+        if ids.is_empty() {
+            continue;
+        }
+        varying.corners(object as usize, mesh_triangles, values);
+        for (&id, values) in ids.iter().zip(values.iter()) {
+            let t = triangles[id as usize - 1];
+            planes[id as usize] = bands.corners(t).planes(t, *values);
+        }
+    }
 }
 
 /// The length of the run of equal ids from `ids[0]` on, within the first `row` ids; `ids`
@@ -101,12 +182,13 @@ fn run_length(ids: &[u32], row: usize) -> usize {
     run.min(row)
 }
 
-/// Shades row `y`, whose pixels were drawn by `triangles[id − 1]` for each of `ids` (0 =
-/// none; [`WIDTH`] ids of the next row follow the row's): runs of one triangle go to `shade` as
-/// whole spans of eight, the rest of each run packed in lanes.
+/// Shades row `y`, whose pixels were drawn by the triangle whose interpolants are
+/// `planes[id]` for each of `ids` (0 = none; [`WIDTH`] ids of the next row follow the row's):
+/// runs of one triangle go to `shade` as whole spans of eight, the rest of each run packed in
+/// lanes.
 #[inline]
 fn shade_row(
-    triangles: &[&ScreenTriangle],
+    planes: &[Planes],
     ids: &[u32],
     y: u32,
     background: Vec3,
@@ -122,8 +204,8 @@ fn shade_row(
         if id == 0 {
             fill(&mut out[x..x + run], background);
         } else {
-            let t = triangles[id as usize - 1];
-            let at_start = t.interpolants(x as i32, y as i32);
+            let t = &planes[id as usize];
+            let at_start = t.at(x as i32, y as i32);
             let whole = run - run % WIDTH;
             for k in (0..whole).step_by(WIDTH) {
                 shade(&Fragments::span(y, x, k, t.object, at_start, t.per_x), out);
@@ -253,12 +335,12 @@ fn scan_band<'a>(
         let y0 = t.min_y.max(top as i32);
         let y1 = t.max_y.min(bottom);
         if fits_lanes(t) {
-            let dz = F32x8::splat(t.per_x.w);
+            let dz = F32x8::splat(t.inv_w.per_x);
             // 1/w at the first covered centre of row `row`.
             let (mut row, mut z0) = (-1, F32x8::splat(0.0));
             for_each_block(t, y0, y1, |y, first, x, covered| {
                 if y != row {
-                    (row, z0) = (y, F32x8::splat(t.interpolants(first, y).w));
+                    (row, z0) = (y, F32x8::splat(t.inv_w_at(first, y)));
                 }
                 // x − first + lane is an exact integer in f32: each lane computes what the
                 // span's depth test would.
@@ -270,12 +352,12 @@ fn scan_band<'a>(
             solved_spans(t, y0, y1, |y, first, last| {
                 let start = row_start(y) + first as usize;
                 let pixels = start..=start + (last - first) as usize;
-                let z0 = t.interpolants(first, y).w;
+                let z0 = t.inv_w_at(first, y);
                 depth_test(
                     &mut depth[pixels.clone()],
                     &mut ids[pixels],
                     z0,
-                    t.per_x.w,
+                    t.inv_w.per_x,
                     id,
                 );
             });

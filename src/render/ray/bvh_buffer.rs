@@ -14,8 +14,8 @@ use rayon::prelude::*;
 use super::bvh_prims::Prim;
 use super::huge_pages;
 use super::intersect::Triangle;
-use super::prefetch;
 use crate::mesh::Mesh;
+use crate::render::prefetch;
 
 /// Triangles per parallel task.
 const CHUNK: usize = 4096;

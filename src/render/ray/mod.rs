@@ -14,7 +14,6 @@ mod intersect;
 mod packet;
 #[cfg(target_arch = "x86_64")]
 mod packet_avx2;
-mod prefetch;
 mod primary;
 mod tracer;
 

@@ -13,7 +13,7 @@ use wide::{CmpGe, CmpGt, CmpLe, CmpLt, u32x8};
 use super::bvh::{Bvh, MAX_TREE_DEPTH, Node};
 use super::half_line::TINY;
 use super::intersect::{EDGE_BAND, PARALLEL_COS, Triangle};
-use super::prefetch;
+use crate::render::prefetch;
 use crate::render::simd::{F32x8, V3};
 
 /// Eight rays `origin + t·dir`, t > `t_min`, one per lane.
