@@ -70,17 +70,16 @@ pub struct Planes {
 }
 
 /// Where a screen triangle's vertices lie on the mesh triangle it came from: what setting up
-/// the planes of its varying needs.
+/// the planes of its varying needs beside the screen triangle itself. Kept small (36 bytes):
+/// every triangle that covers a pixel centre gets one, at 1920×1080 most of a mesh's, and only
+/// the seen ones are read again.
 #[derive(Debug, Clone, Copy)]
 pub struct Corners {
-    /// 1/w at each screen vertex.
-    pub inv_w: [f64; 3],
+    /// Clip-space w at each screen vertex, in the screen triangle's vertex order.
+    pub w: [f32; 3],
     /// Barycentrics of each screen vertex on the mesh triangle (weights of its vertices 1
     /// and 2): a clipped vertex lies between the triangle's own.
     pub bary: [Vec2; 3],
-    /// The screen triangle's barycentric weights over pixel centres, kept from the plane of
-    /// 1/w for the planes of the varying.
-    weights: Weights,
 }
 
 /// A clip-space vertex during clipping: position (x, y, w) and barycentrics on the original
@@ -337,7 +336,7 @@ fn emit(
     view: &View,
     mut x: [i32; 3],
     mut y: [i32; 3],
-    w: [f32; 3],
+    mut w: [f32; 3],
     mut bary: [Vec2; 3],
     object: u32,
     triangle: u32,
@@ -355,16 +354,15 @@ fn emit(
     if area == 0 {
         return;
     }
-    let mut inv_w = w.map(|w| 1.0 / w as f64);
     if area < 0 {
         x.swap(1, 2);
         y.swap(1, 2);
-        inv_w.swap(1, 2);
+        w.swap(1, 2);
         bary.swap(1, 2);
     }
     let (ref_x, ref_y) = (x[0] >> SUBPIXEL_BITS, y[0] >> SUBPIXEL_BITS);
     let weights = Weights::new(x, y, ref_x, ref_y, area);
-    let (at, per_x, per_y) = weights.plane(inv_w);
+    let (at, per_x, per_y) = weights.plane(inverse(w));
     out.push(ScreenTriangle {
         x,
         y,
@@ -384,11 +382,13 @@ fn emit(
         chunk: 0,
         slot: corners.len() as u32,
     });
-    corners.push(Corners {
-        inv_w,
-        bary,
-        weights,
-    });
+    corners.push(Corners { w, bary });
+}
+
+/// 1/w at each vertex, in `f64`.
+#[inline(always)]
+fn inverse(w: [f32; 3]) -> [f64; 3] {
+    w.map(|w| 1.0 / w as f64)
 }
 
 /// Each barycentric weight λk = (edge function opposite vertex k) / area is affine in the pixel
@@ -462,15 +462,20 @@ impl Corners {
     /// vertex is interpolated from the mesh triangle's.
     #[inline]
     pub fn planes(&self, t: &ScreenTriangle, values: [Vec3; 3]) -> Planes {
+        // The weights the plane of 1/w was set up with, worked out again from the same
+        // integers: the same bits, and cheaper than keeping them for every triangle.
+        let area = edge(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]);
+        let weights = Weights::new(t.x, t.y, t.ref_x, t.ref_y, area);
+        let inv_w = inverse(self.w);
         let [a0, a1, a2] = values.map(|a| a.as_dvec3());
         let scaled: [DVec3; 3] = std::array::from_fn(|k| {
             let b = self.bary[k].as_dvec2();
             let varying = a0 + (a1 - a0) * b.x + (a2 - a0) * b.y;
-            varying * self.inv_w[k]
+            varying * inv_w[k]
         });
         let (mut at_ref, mut per_x, mut per_y) = (Vec4::ZERO, Vec4::ZERO, Vec4::ZERO);
         for c in 0..3 {
-            let (at, step_x, step_y) = self.weights.plane(scaled.map(|v| v[c]));
+            let (at, step_x, step_y) = weights.plane(scaled.map(|v| v[c]));
             at_ref[c] = at as f32;
             per_x[c] = step_x as f32;
             per_y[c] = step_y as f32;
