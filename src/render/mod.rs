@@ -9,6 +9,7 @@
 
 mod algorithm;
 mod camera;
+mod cpu;
 mod error;
 mod frame;
 mod materials;

@@ -460,7 +460,7 @@ impl Corners {
     /// The planes of screen triangle `t`'s interpolants, given the varying at its mesh
     /// triangle's three vertices, `values` (`self` are `t`'s corners). The varying of a clipped
     /// vertex is interpolated from the mesh triangle's.
-    #[inline]
+    #[inline(always)]
     pub fn planes(&self, t: &ScreenTriangle, values: [Vec3; 3]) -> Planes {
         // The weights the plane of 1/w was set up with, worked out again from the same
         // integers: the same bits, and cheaper than keeping them for every triangle.

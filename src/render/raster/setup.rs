@@ -13,6 +13,7 @@ use super::projected::{ProjectedVertices, project};
 use super::screen_triangle::{Corners, Planes, ScreenTriangle, may_cover, setup_triangle};
 use super::varying::Varying;
 use crate::render::camera::View;
+use crate::render::cpu::with_avx2;
 use crate::render::simd::WIDTH;
 use crate::world::World;
 
@@ -152,8 +153,13 @@ impl Geometry {
             .par_iter_mut()
             .enumerate()
             .for_each(|(k, chunk)| {
-                chunk.set_up(world, view, &projected[chunk.object]);
-                chunk.bin(k as u32, rows, bands);
+                with_avx2(
+                    #[inline(always)]
+                    || {
+                        chunk.set_up(world, view, &projected[chunk.object]);
+                        chunk.bin(k as u32, rows, bands);
+                    },
+                )
             });
         self.survivors.clear();
         self.survivors.resize(world.objects.len(), 0);
@@ -214,6 +220,7 @@ fn project_all(projected: &mut Vec<ProjectedVertices>, world: &World, view: &Vie
 impl SetupChunk {
     /// Tests and sets up the chunk's triangles of `world` seen through `view` (their object's
     /// vertices are `projected`), without the planes of the varying.
+    #[inline(always)]
     fn set_up(&mut self, world: &World, view: &View, projected: &ProjectedVertices) {
         let unique = &world.objects[self.object].unique;
         self.triangles.clear();
@@ -244,6 +251,7 @@ impl SetupChunk {
 
     /// Bins the chunk's screen triangles into `bands` bands of `rows` rows, in triangle order;
     /// the chunk is number `chunk` of the frame's.
+    #[inline(always)]
     fn bin(&mut self, chunk: u32, rows: u32, bands: usize) {
         let reach = |t: &ScreenTriangle| {
             (t.min_y as u32 / rows) as usize..=(t.max_y as u32 / rows) as usize

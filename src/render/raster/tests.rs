@@ -335,3 +335,49 @@ fn only_the_triangles_a_frame_shows_have_their_varying_worked_out() {
         );
     }
 }
+
+#[test]
+fn setup_compiled_for_avx2_draws_the_bits_of_the_baseline_build() {
+    // Triangle setup, binning and the planes of the varying run compiled for AVX2 where the CPU
+    // has it: the images must be those of the baseline build, bit for bit, including triangles
+    // clipped at the near plane and the guard band. (On a CPU without AVX2 both are the
+    // baseline.)
+    use crate::render::cpu::BASELINE_ONLY;
+    use std::sync::atomic::Ordering;
+    let mut scenes = vec![default_scene()];
+    let mut close = default_scene();
+    close.camera.position = Vec3::new(0.3, 0.4, 0.9);
+    close.camera.fov = 100.0;
+    scenes.push(close);
+    let progress = Progress::new();
+    for scene in &scenes {
+        let world = world(scene);
+        let view = View::new(&scene.camera, 211, 97);
+        let draw = |algorithm: Algorithm| {
+            let mut out = vec![Vec3::NAN; (view.width * view.height) as usize];
+            let mut scratch = RasterScratch::default();
+            match algorithm {
+                Algorithm::Gouraud => {
+                    render_gouraud(&mut scratch, &world, &view, &progress, &mut out)
+                }
+                _ => render_phong(&mut scratch, &world, &view, &progress, &mut out),
+            }
+            .expect("render");
+            out
+        };
+        for algorithm in [Algorithm::Gouraud, Algorithm::Phong] {
+            let fast = draw(algorithm);
+            BASELINE_ONLY.store(true, Ordering::Relaxed);
+            let baseline = draw(algorithm);
+            BASELINE_ONLY.store(false, Ordering::Relaxed);
+            let differing = fast
+                .iter()
+                .zip(&baseline)
+                .filter(|(a, b)| a.to_array().map(f32::to_bits) != b.to_array().map(f32::to_bits))
+                .count();
+            assert_eq!(differing, 0, "{algorithm}: {differing} pixels differ");
+            let covered = fast.iter().filter(|c| **c != world.background).count();
+            assert!(covered > 2000, "the scene covers the view ({covered})");
+        }
+    }
+}

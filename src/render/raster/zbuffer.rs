@@ -23,6 +23,7 @@ use super::setup::{BandBuffers, Bands, Geometry};
 use super::spans::{fits_lanes, for_each_block, solved_spans};
 use super::varying::Varying;
 use crate::render::camera::View;
+use crate::render::cpu::with_avx2;
 use crate::render::prefetch;
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::simd::{F32x8, WIDTH, load};
@@ -79,7 +80,10 @@ pub fn draw(
                 triangles.len(),
                 &mut buffers.seen,
             );
-            set_planes(triangles, &bands, varying, buffers);
+            with_avx2(
+                #[inline(always)]
+                || set_planes(triangles, &bands, varying, buffers),
+            );
             for (r, out) in rows.chunks_mut(width as usize).enumerate() {
                 let y = top + r as u32;
                 let start = r * width as usize;
@@ -119,6 +123,7 @@ fn mark_seen(ids: &[u32], count: usize, seen: &mut Vec<bool>) {
 /// Sets up `buffers.planes[id]` for each id the band shows (`buffers.seen`) of its bin
 /// `triangles`: the varying at the corners of each run of seen triangles of one object is
 /// asked of `varying` at once.
+#[inline(always)]
 fn set_planes(
     triangles: &[&ScreenTriangle],
     bands: &Bands,
