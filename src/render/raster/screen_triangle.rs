@@ -4,8 +4,9 @@
 //! [`setup_triangle`], needs positions alone: it rejects triangles outside the view or covering
 //! no pixel centre (at the editor's preview size, most triangles of a real mesh), clips the rest
 //! against the near plane and the guard band, snaps and orients them, and sets up the plane of
-//! 1/w. The second, [`ScreenTriangle::set_varying`], sets up the planes of the varying once its
-//! vertex values are known: a Gouraud shader lights only the vertices of triangles that remain.
+//! 1/w. The second, [`Corners::planes`], sets up the planes of the varying once its vertex
+//! values are known, and only for triangles that won a pixel in the depth test: a Gouraud shader
+//! lights only the vertices of triangles that show.
 
 use glam::{DVec3, Vec2, Vec3, Vec4};
 
