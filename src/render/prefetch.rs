@@ -16,19 +16,11 @@
 /// them, 54.5–59.1 ms without (about 10% less).
 #[inline(always)]
 pub(crate) fn ahead<T>(value: &T) {
-    #[cfg(target_arch = "x86_64")]
-    // SAFETY: `prefetcht0` only hints the cache: it reads nothing the program sees, cannot
-    // fault, and the address comes from a live reference.
-    unsafe {
-        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast());
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = value;
+    line((value as *const T).cast());
 }
 
-/// Hints that all of `value` is read soon: each cache line it touches (a value of up to 128
-/// bytes, as the Z-buffer's per-triangle corners, may touch three).
+/// Hints that all of `value` is read soon: each cache line it touches (the Z-buffer's
+/// 36-byte corners of a triangle may straddle two).
 #[inline(always)]
 pub(crate) fn ahead_all<T>(value: &T) {
     let start = (value as *const T).cast::<u8>();
@@ -44,11 +36,12 @@ pub(crate) fn ahead_all<T>(value: &T) {
 /// Bytes per cache line.
 const LINE: usize = 64;
 
-/// [`ahead`] for the line holding `address`, a byte of a live value.
+/// Hints that the cache line holding `address`, a byte of a live value, is read soon.
 #[inline(always)]
 fn line(address: *const u8) {
     #[cfg(target_arch = "x86_64")]
-    // SAFETY: as in `ahead`; `address` lies inside a value a live reference points to.
+    // SAFETY: `prefetcht0` only hints the cache: it reads nothing the program sees and cannot
+    // fault; `address` lies inside a value a live reference points to.
     unsafe {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
         _mm_prefetch::<_MM_HINT_T0>(address.cast());

@@ -136,7 +136,7 @@ impl Geometry {
     /// `varying`'s per-object work beside it, planned by the last frame's survivors), then one
     /// pass per setup chunk that tests, sets up and bins its triangles. A small frame thus
     /// wakes the render threads twice rather than once per stage. The first frame plans the
-    /// varying's work by its own survivors, between two passes.
+    /// varying's work by its own survivors, after the setup pass.
     pub fn set_up(&mut self, world: &World, view: &View, varying: &mut dyn Varying) -> Bands<'_> {
         let planned = self.survivors.len() == world.objects.len();
         let projected = &mut self.projected;
