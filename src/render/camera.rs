@@ -71,7 +71,7 @@ impl View {
 
     /// Unit direction of the ray through continuous pixel coordinates (x, y); the centre of pixel
     /// (i, j) is (i + 0.5, j + 0.5).
-    #[inline]
+    #[inline(always)]
     pub fn ray_direction(&self, x: f32, y: f32) -> Vec3 {
         self.pixel_direction(x, y).normalize_or_zero().to_vec3()
     }

@@ -16,13 +16,13 @@
 /// the Z-buffer's triangle setup, binning and planes of the varying run through it or not,
 /// alternating three times, frames of a kept renderer (min of 1,000): Gouraud 1.20–1.25 →
 /// 1.13–1.16 ms, Phong 1.15–1.17 → 1.09–1.11 ms; at 1920×1080 (min of 40) Phong 20.8–21.3 →
-/// 20.2–20.8 ms. The band drawing and the lighting, written with `wide`'s lanes, gained
-/// nothing this way (they stay two SSE registers per value), nor from a lighting on AVX
-/// registers proper.
+/// 20.2–20.8 ms. Code written with `wide`'s lanes gains nothing this way (they stay two SSE
+/// registers per value): the shading of the Z-buffer's rows runs on AVX registers proper,
+/// through [`run_on_best_lanes`](super::simd::run_on_best_lanes).
 #[inline(always)]
 pub(crate) fn with_avx2<R>(work: impl FnOnce() -> R) -> R {
     #[cfg(target_arch = "x86_64")]
-    if available() {
+    if has_avx2_bmi() {
         // SAFETY: the features `avx2_work` is compiled for were detected just above.
         return unsafe { avx2_work(work) };
     }
@@ -36,10 +36,11 @@ pub(crate) fn with_avx2<R>(work: impl FnOnce() -> R) -> R {
 pub(crate) static BASELINE_ONLY: std::sync::atomic::AtomicBool =
     std::sync::atomic::AtomicBool::new(false);
 
-/// Whether this CPU has what [`avx2_work`] is compiled for.
+/// Whether this CPU has what [`avx2_work`] is compiled for: AVX2, BMI1/2 and LZCNT (detected
+/// once, then cached flags; false in a test that asked for the baseline build).
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn available() -> bool {
+pub(crate) fn has_avx2_bmi() -> bool {
     #[cfg(test)]
     if BASELINE_ONLY.load(std::sync::atomic::Ordering::Relaxed) {
         return false;

@@ -1,9 +1,7 @@
 //! Each object's material as the lighting function takes it: the coefficients in lanes, plus
 //! the specular cutoff that lets the lighting skip highlights too faint to show.
 
-use std::borrow::Cow;
-
-use super::simd::{F32x8, Lanes, V3, WIDTH};
+use super::simd::{Lanes, Lanes8, V3, WIDTH};
 use crate::scene::Material;
 use crate::world::World;
 
@@ -63,11 +61,11 @@ impl<L: Lanes> MaterialLanes<L> {
     }
 }
 
-impl MaterialLanes<F32x8> {
+impl<L: Lanes8> MaterialLanes<L> {
     /// Lane k takes `materials[k]`.
-    #[inline]
-    pub fn gather(materials: [&MaterialLanes<f32>; WIDTH]) -> MaterialLanes<F32x8> {
-        let lanes = |f: fn(&MaterialLanes<f32>) -> f32| F32x8::from(materials.map(f));
+    #[inline(always)]
+    pub fn gather(materials: [&MaterialLanes<f32>; WIDTH]) -> MaterialLanes<L> {
+        let lanes = |f: fn(&MaterialLanes<f32>) -> f32| L::from_array(materials.map(f));
         MaterialLanes {
             color: V3::new(
                 lanes(|m| m.color.x),
@@ -87,8 +85,6 @@ impl MaterialLanes<F32x8> {
 pub struct ObjectMaterials {
     /// One value per object.
     pub one: Vec<MaterialLanes<f32>>,
-    /// The same in every lane.
-    pub lanes: Vec<MaterialLanes<F32x8>>,
 }
 
 impl ObjectMaterials {
@@ -104,20 +100,23 @@ impl ObjectMaterials {
             .iter()
             .map(|o| MaterialLanes::new(&o.material, brightest))
             .collect();
-        let lanes = one.iter().map(MaterialLanes::splat).collect();
-        ObjectMaterials { one, lanes }
+        ObjectMaterials { one }
     }
 
-    /// The materials of objects `objects`, lane by lane: the object's own lanes when all eight
-    /// belong to one object (the common case), else gathered.
-    #[inline]
-    pub fn of_lanes(&self, objects: &[u32; WIDTH]) -> Cow<'_, MaterialLanes<F32x8>> {
+    /// The material of `object` in every lane.
+    #[inline(always)]
+    pub fn splat<L: Lanes>(&self, object: usize) -> MaterialLanes<L> {
+        MaterialLanes::splat(&self.one[object])
+    }
+
+    /// The materials of objects `objects`, lane by lane: one object's splat when all eight
+    /// belong to it (the common case), else gathered.
+    #[inline(always)]
+    pub fn of_lanes<L: Lanes8>(&self, objects: &[u32; WIDTH]) -> MaterialLanes<L> {
         if objects.iter().all(|&o| o == objects[0]) {
-            Cow::Borrowed(&self.lanes[objects[0] as usize])
+            self.splat(objects[0] as usize)
         } else {
-            Cow::Owned(MaterialLanes::gather(
-                objects.map(|o| &self.one[o as usize]),
-            ))
+            MaterialLanes::gather(objects.map(|o| &self.one[o as usize]))
         }
     }
 }

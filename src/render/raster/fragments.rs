@@ -10,11 +10,12 @@
 
 use glam::{Vec3, Vec4};
 
-use crate::render::simd::{F32x8, V3, WIDTH, load};
+use crate::render::simd::{Lanes8, V3, WIDTH};
 
-/// Up to [`WIDTH`] covered pixels of one row. Lanes past `count` repeat the last pixel.
-#[derive(Debug, Clone, Copy)]
-pub struct Fragments {
+/// Up to [`WIDTH`] covered pixels of one row, in lanes `L`. Lanes past `count` repeat the last
+/// pixel.
+#[derive(Clone, Copy)]
+pub struct Fragments<L> {
     /// Row within the view (0 = top).
     pub y: u32,
     /// Number of lanes that are pixels, 1..=[`WIDTH`].
@@ -24,21 +25,22 @@ pub struct Fragments {
     /// Object index in the world of each lane.
     pub object: [u32; WIDTH],
     /// Depth w of the surface along the view direction, world units (> 0).
-    pub depth: F32x8,
+    pub depth: L,
     /// The perspective-correct varying.
-    pub varying: V3<F32x8>,
+    pub varying: V3<L>,
 }
 
 /// (0, 1, …, 7).
-fn lane_numbers() -> F32x8 {
-    F32x8::from(std::array::from_fn::<f32, WIDTH, _>(|k| k as f32))
+#[inline(always)]
+fn lane_numbers<L: Lanes8>() -> L {
+    L::from_array(std::array::from_fn(|k| k as f32))
 }
 
-impl Fragments {
+impl<L: Lanes8> Fragments<L> {
     /// Pixels `run_start + k .. run_start + k + WIDTH` of row `y`, all drawn by one triangle of
     /// `object` whose interpolants (varying·1/w, 1/w) are `at_start` at the run's first pixel and
     /// change by `per_x` per pixel.
-    #[inline]
+    #[inline(always)]
     pub fn span(
         y: u32,
         run_start: usize,
@@ -46,9 +48,9 @@ impl Fragments {
         object: u32,
         at_start: Vec4,
         per_x: Vec4,
-    ) -> Fragments {
-        let steps = F32x8::splat(k as f32) + lane_numbers();
-        let plane = |at: f32, per: f32| F32x8::splat(at) + F32x8::splat(per) * steps;
+    ) -> Fragments<L> {
+        let steps = L::splat(k as f32) + lane_numbers();
+        let plane = |at: f32, per: f32| L::splat(at) + L::splat(per) * steps;
         let first = (run_start + k) as u32;
         Fragments::from_interpolants(
             y,
@@ -71,9 +73,9 @@ impl Fragments {
         count: usize,
         x: [u32; WIDTH],
         object: [u32; WIDTH],
-        [vx, vy, vz, inv_w]: [F32x8; 4],
-    ) -> Fragments {
-        let depth = F32x8::splat(1.0) / inv_w;
+        [vx, vy, vz, inv_w]: [L; 4],
+    ) -> Fragments<L> {
+        let depth = L::splat(1.0) / inv_w;
         Fragments {
             y,
             count,
@@ -85,8 +87,8 @@ impl Fragments {
     }
 
     /// Writes the colours of the lanes that are pixels into `out`, the row's pixels.
-    #[inline]
-    pub fn write(&self, colors: V3<F32x8>, out: &mut [Vec3]) {
+    #[inline(always)]
+    pub fn write(&self, colors: V3<L>, out: &mut [Vec3]) {
         let colors = colors.to_vec3s();
         let first = self.x[0] as usize;
         if self.count == WIDTH && self.x[WIDTH - 1] as usize == first + WIDTH - 1 {
@@ -118,9 +120,9 @@ impl Packer {
     /// at the run's first pixel and change by `per_x` per pixel: pixel k gets
     /// `at_start + per_x·k`, as in [`Fragments::span`]. Returns the first eight fragments once
     /// there are eight.
-    #[inline]
+    #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    pub fn push_run(
+    pub fn push_run<L: Lanes8>(
         &mut self,
         y: u32,
         run_start: usize,
@@ -129,12 +131,12 @@ impl Packer {
         object: u32,
         at_start: Vec4,
         per_x: Vec4,
-    ) -> Option<Fragments> {
+    ) -> Option<Fragments<L>> {
         debug_assert!((1..=WIDTH).contains(&len));
         let n = self.count;
-        let steps = F32x8::splat(first as f32) + lane_numbers();
+        let steps = L::splat(first as f32) + lane_numbers();
         for (c, values) in self.values.iter_mut().enumerate() {
-            let lanes = F32x8::splat(at_start[c]) + F32x8::splat(per_x[c]) * steps;
+            let lanes = L::splat(at_start[c]) + L::splat(per_x[c]) * steps;
             values[n..n + WIDTH].copy_from_slice(&lanes.to_array());
         }
         let column = (run_start + first) as u32;
@@ -158,8 +160,8 @@ impl Packer {
 
     /// The fragments collected so far, as lanes of row `y`; `None` when there are none. Empties
     /// the packer.
-    #[inline]
-    pub fn take(&mut self, y: u32) -> Option<Fragments> {
+    #[inline(always)]
+    pub fn take<L: Lanes8>(&mut self, y: u32) -> Option<Fragments<L>> {
         let count = std::mem::take(&mut self.count);
         let last = count.checked_sub(1)?;
         for n in count..WIDTH {
@@ -174,16 +176,18 @@ impl Packer {
 
     /// The first eight lanes as fragments of row `y`, `count` of them pixels.
     #[inline(always)]
-    fn first_eight(&self, y: u32, count: usize) -> Fragments {
+    fn first_eight<L: Lanes8>(&self, y: u32, count: usize) -> Fragments<L> {
         let lanes = |values: &[u32; 2 * WIDTH]| -> [u32; WIDTH] {
             values[..WIDTH].try_into().expect("lanes")
         };
+        let load =
+            |values: &[f32; 2 * WIDTH]| L::from_array(values[..WIDTH].try_into().expect("lanes"));
         Fragments::from_interpolants(
             y,
             count,
             lanes(&self.x),
             lanes(&self.object),
-            self.values.each_ref().map(|v| load(v)),
+            self.values.each_ref().map(load),
         )
     }
 }
@@ -193,7 +197,7 @@ mod tests {
     use glam::Vec4;
 
     use super::{Fragments, Packer};
-    use crate::render::simd::WIDTH;
+    use crate::render::simd::{F32x8, WIDTH};
 
     #[test]
     fn a_span_and_packed_runs_interpolate_the_same_bits() {
@@ -201,11 +205,15 @@ mod tests {
         // with other short runs: the image must not depend on how pixels were batched.
         let at_start = Vec4::new(0.3, -0.7, 0.11, 0.25);
         let per_x = Vec4::new(1.0e-3, -3.0e-4, 7.0e-5, -1.0e-5);
-        let span = Fragments::span(5, 100, 8, 2, at_start, per_x);
+        let span = Fragments::<F32x8>::span(5, 100, 8, 2, at_start, per_x);
         let mut packer = Packer::default();
-        assert!(packer.push_run(5, 100, 8, 3, 2, at_start, per_x).is_none());
+        assert!(
+            packer
+                .push_run::<F32x8>(5, 100, 8, 3, 2, at_start, per_x)
+                .is_none()
+        );
         let packed = packer
-            .push_run(5, 100, 11, 5, 2, at_start, per_x)
+            .push_run::<F32x8>(5, 100, 11, 5, 2, at_start, per_x)
             .expect("eight fragments");
         assert_eq!(span.x, packed.x);
         assert_eq!((span.count, packed.count), (WIDTH, WIDTH));
@@ -225,14 +233,14 @@ mod tests {
         }
         // Runs past the eighth lane wait for the next batch; a partly filled packer repeats
         // its last fragment and says how many are real.
-        packer.push_run(7, 40, 0, 6, 1, at_start, per_x);
+        packer.push_run::<F32x8>(7, 40, 0, 6, 1, at_start, per_x);
         let full = packer
-            .push_run(7, 50, 2, 4, 3, at_start, per_x)
+            .push_run::<F32x8>(7, 50, 2, 4, 3, at_start, per_x)
             .expect("ten");
         assert_eq!(full.x, [40, 41, 42, 43, 44, 45, 52, 53]);
         assert_eq!(full.object, [1, 1, 1, 1, 1, 1, 3, 3]);
-        let rest = packer.take(7).expect("two fragments");
+        let rest = packer.take::<F32x8>(7).expect("two fragments");
         assert_eq!((rest.count, rest.x), (2, [54, 55, 55, 55, 55, 55, 55, 55]));
-        assert!(packer.take(7).is_none(), "take empties the packer");
+        assert!(packer.take::<F32x8>(7).is_none(), "take empties the packer");
     }
 }

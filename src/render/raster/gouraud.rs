@@ -9,6 +9,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::setup::RasterScratch;
+use super::shader::VaryingColor;
 use super::varying::Varying;
 use super::zbuffer::draw;
 use crate::render::camera::View;
@@ -46,9 +47,7 @@ pub fn render_gouraud(
         view,
         progress,
         &mut colors,
-        |fragments, row| {
-            fragments.write(fragments.varying, row);
-        },
+        &VaryingColor,
         out,
     )
 }
@@ -92,10 +91,11 @@ impl Varying for LitVertices<'_> {
         whole
             .par_iter_mut()
             .zip(&self.world.objects)
-            .zip(&self.materials.lanes)
+            .enumerate()
             .zip(&lit)
             .filter(|(_, lit)| **lit)
-            .for_each(|(((colors, o), material), _)| {
+            .for_each(|((object, (colors, o)), _)| {
+                let material = &this.materials.splat(object);
                 colors.clear();
                 colors.reserve(o.mesh.positions.len());
                 for (p, n) in o
@@ -124,7 +124,7 @@ impl Varying for LitVertices<'_> {
             );
             return;
         }
-        let material = &self.materials.lanes[object];
+        let material = &self.materials.splat(object);
         // All the loads first, so that the misses overlap.
         for &t in triangles {
             for i in mesh.triangles[t as usize] {

@@ -9,6 +9,7 @@ mod phong;
 mod projected;
 mod screen_triangle;
 mod setup;
+mod shader;
 mod snap;
 mod spans;
 mod varying;

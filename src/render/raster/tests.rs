@@ -9,11 +9,12 @@ use glam::{Affine3A, Quat, Vec3};
 
 use super::fragments::Fragments;
 use super::setup::{Geometry, RasterScratch};
+use super::shader::{Shader, VaryingColor};
 use super::varying::PerVertex;
 use super::zbuffer::{coverage_counts, draw};
 use super::{render_gouraud, render_phong};
 use crate::mesh::{FaceList, with_normals};
-use crate::render::simd::V3;
+use crate::render::simd::{Lanes8, V3};
 use crate::render::{Algorithm, Frame, Progress, RenderOptions, Renderer, View};
 use crate::scene::{Camera, Material, Scene};
 use crate::world::{World, WorldObject};
@@ -185,17 +186,13 @@ material = { color = [0.5, 0.5, 0.5] }
     let mut normals = PerVertex::normals(&world);
     let progress = Progress::new();
     let mut drawn = vec![Vec3::NAN; 64 * 48];
-    let write_depth = |fragments: &Fragments, row: &mut [Vec3]| {
-        let depth = fragments.depth;
-        fragments.write(V3::new(depth, depth, depth), row)
-    };
     draw(
         &mut Geometry::default(),
         &world,
         &view,
         &progress,
         &mut normals,
-        write_depth,
+        &WriteDepth,
         &mut drawn,
     )
     .expect("draw");
@@ -296,7 +293,7 @@ fn only_the_triangles_a_frame_shows_have_their_varying_worked_out() {
             &view,
             &Progress::new(),
             &mut recorder,
-            |fragments: &Fragments, row: &mut [Vec3]| fragments.write(fragments.varying, row),
+            &VaryingColor,
             &mut drawn,
         )
         .expect("draw");
@@ -336,12 +333,22 @@ fn only_the_triangles_a_frame_shows_have_their_varying_worked_out() {
     }
 }
 
+/// Writes each pixel's depth w as its colour.
+struct WriteDepth;
+
+impl Shader for WriteDepth {
+    fn shade<L: Lanes8>(&self, fragments: &Fragments<L>, row: &mut [Vec3]) {
+        let depth = fragments.depth;
+        fragments.write(V3::new(depth, depth, depth), row)
+    }
+}
+
 #[test]
 fn setup_compiled_for_avx2_draws_the_bits_of_the_baseline_build() {
     // Triangle setup, binning and the planes of the varying run compiled for AVX2 where the CPU
-    // has it: the images must be those of the baseline build, bit for bit, including triangles
-    // clipped at the near plane and the guard band. (On a CPU without AVX2 both are the
-    // baseline.)
+    // has it, and the rows are shaded on AVX registers: the images must be those of the
+    // baseline build, bit for bit, including triangles clipped at the near plane and the guard
+    // band. (On a CPU without AVX2 both are the baseline.)
     use crate::render::cpu::BASELINE_ONLY;
     use std::sync::atomic::Ordering;
     let mut scenes = vec![default_scene()];

@@ -20,22 +20,23 @@ use rayon::prelude::*;
 use super::fragments::{Fragments, Packer};
 use super::screen_triangle::{Planes, ScreenTriangle};
 use super::setup::{BandBuffers, Bands, Geometry};
+use super::shader::Shader;
 use super::spans::{fits_lanes, for_each_block, solved_spans};
 use super::varying::Varying;
 use crate::render::camera::View;
 use crate::render::cpu::with_avx2;
 use crate::render::prefetch;
 use crate::render::progress::{Cancelled, Progress};
-use crate::render::simd::{F32x8, WIDTH, load};
+use crate::render::simd::{F32x8, Lanes8, LanesJob, WIDTH, load, run_on_best_lanes};
 use crate::world::World;
 use wide::{CmpEq, CmpGe, i32x8, u32x8};
 
 /// Draws `world` seen through `view` into `out` (`view.width`×`view.height` pixels, every one
 /// written), with `geometry` as working memory. Each band of rows is scan-converted with a
 /// depth test on 1/w, keeping the nearest triangle per pixel centre; then the covered pixels of
-/// each row are handed to `shade` eight at a time as [`Fragments`], with `varying`
-/// interpolated perspective-correctly, and `shade` writes their colours into the row. Uncovered
-/// pixels get the background. Shading after the depth test shades each pixel once however much
+/// each row are handed to `shader` eight at a time as [`Fragments`], on the widest lanes the
+/// CPU has, with `varying` interpolated perspective-correctly, and it writes their colours into
+/// the row. Uncovered pixels get the background. Shading after the depth test shades each pixel once however much
 /// overdraw the scene has, and shading right after each band keeps the band's buffers in cache.
 pub fn draw(
     geometry: &mut Geometry,
@@ -43,7 +44,7 @@ pub fn draw(
     view: &View,
     progress: &Progress,
     varying: &mut dyn Varying,
-    shade: impl Fn(&Fragments, &mut [Vec3]) + Sync,
+    shader: &impl Shader,
     out: &mut [Vec3],
 ) -> Result<(), Cancelled> {
     let width = view.width;
@@ -84,13 +85,15 @@ pub fn draw(
                 #[inline(always)]
                 || set_planes(triangles, &bands, varying, buffers),
             );
-            for (r, out) in rows.chunks_mut(width as usize).enumerate() {
-                let y = top + r as u32;
-                let start = r * width as usize;
-                // The row's ids and the next row's (or the padding): runs are found in lanes.
-                let ids = &buffers.id[start..start + width as usize + WIDTH];
-                shade_row(&buffers.planes, ids, y, world.background, &shade, out);
-            }
+            run_on_best_lanes(ShadeRows {
+                planes: &buffers.planes,
+                ids: &buffers.id,
+                width: width as usize,
+                top,
+                background: world.background,
+                shader,
+                rows,
+            });
             progress.advance(band_rows as u64);
             Ok(())
         });
@@ -169,6 +172,36 @@ fn set_planes(
     }
 }
 
+/// The shading of a band's rows, `top` down: `planes` and `ids` as [`shade_row`] takes them,
+/// `ids` for the whole band and [`WIDTH`] past it.
+struct ShadeRows<'a, S> {
+    planes: &'a [Planes],
+    ids: &'a [u32],
+    /// Pixels per row.
+    width: usize,
+    top: u32,
+    background: Vec3,
+    shader: &'a S,
+    /// The band's pixels, row after row.
+    rows: &'a mut [Vec3],
+}
+
+impl<S: Shader> LanesJob for ShadeRows<'_, S> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<L: Lanes8>(self) {
+        let width = self.width;
+        for (r, out) in self.rows.chunks_mut(width).enumerate() {
+            let start = r * width;
+            // The row's ids and the next row's (or the padding): runs are found in lanes.
+            let ids = &self.ids[start..start + width + WIDTH];
+            let y = self.top + r as u32;
+            shade_row::<L, S>(self.planes, ids, y, self.background, self.shader, out);
+        }
+    }
+}
+
 /// The length of the run of equal ids from `ids[0]` on, within the first `row` ids; `ids`
 /// holds at least [`WIDTH`] more, which are compared eight at a time.
 #[inline(always)]
@@ -189,15 +222,15 @@ fn run_length(ids: &[u32], row: usize) -> usize {
 
 /// Shades row `y`, whose pixels were drawn by the triangle whose interpolants are
 /// `planes[id]` for each of `ids` (0 = none; [`WIDTH`] ids of the next row follow the row's):
-/// runs of one triangle go to `shade` as whole spans of eight, the rest of each run packed in
+/// runs of one triangle go to `shader` as whole spans of eight, the rest of each run packed in
 /// lanes.
-#[inline]
-fn shade_row(
+#[inline(always)]
+fn shade_row<L: Lanes8, S: Shader>(
     planes: &[Planes],
     ids: &[u32],
     y: u32,
     background: Vec3,
-    shade: &impl Fn(&Fragments, &mut [Vec3]),
+    shader: &S,
     out: &mut [Vec3],
 ) {
     let mut packer = Packer::default();
@@ -213,26 +246,27 @@ fn shade_row(
             let at_start = t.at(x as i32, y as i32);
             let whole = run - run % WIDTH;
             for k in (0..whole).step_by(WIDTH) {
-                shade(&Fragments::span(y, x, k, t.object, at_start, t.per_x), out);
+                let span = Fragments::<L>::span(y, x, k, t.object, at_start, t.per_x);
+                shader.shade(&span, out);
             }
             if whole < run {
                 let rest = run - whole;
-                if let Some(full) = packer.push_run(y, x, whole, rest, t.object, at_start, t.per_x)
-                {
-                    shade(&full, out);
+                let full = packer.push_run::<L>(y, x, whole, rest, t.object, at_start, t.per_x);
+                if let Some(full) = full {
+                    shader.shade(&full, out);
                 }
             }
         }
         x += run;
     }
-    if let Some(rest) = packer.take(y) {
-        shade(&rest, out);
+    if let Some(rest) = packer.take::<L>(y) {
+        shader.shade(&rest, out);
     }
 }
 
 /// Fills `pixels` with `color` eight at a time: a pixel is 12 bytes, and filling them one by
 /// one takes two stores each, which at 1920×1080 cost more than the memory writes.
-#[inline]
+#[inline(always)]
 fn fill(pixels: &mut [Vec3], color: Vec3) {
     let eight = [color; WIDTH];
     let mut blocks = pixels.chunks_exact_mut(WIDTH);

@@ -310,7 +310,7 @@ impl<'a> Tracer<'a> {
                 Patch::Mesh(corners) => self.surface_at(corners, u[s], v[s], dirs[k]),
             }
         });
-        let material = self.materials.of_lanes(&objects);
+        let material = self.materials.of_lanes::<F32x8>(&objects);
         let p = V3::gather(&surfaces.each_ref().map(|s| s.p));
         let n = V3::gather(&surfaces.each_ref().map(|s| s.n));
         let origins = V3::gather(&surfaces.each_ref().map(|s| s.origin));

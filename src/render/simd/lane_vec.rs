@@ -4,7 +4,7 @@ use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
 use glam::Vec3;
 
-use super::lanes::{F32x8, Lanes, WIDTH};
+use super::lanes::{F32x8, Lanes, Lanes8, WIDTH};
 
 /// `x`, `y` and `z` each hold one component of every lane's vector.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -99,9 +99,11 @@ impl V3<F32x8> {
         }
         V3::new(F32x8::from(x), F32x8::from(y), F32x8::from(z))
     }
+}
 
+impl<L: Lanes8> V3<L> {
     /// The vectors of the lanes.
-    #[inline]
+    #[inline(always)]
     pub fn to_vec3s(self) -> [Vec3; WIDTH] {
         let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
         std::array::from_fn(|k| Vec3::new(x[k], y[k], z[k]))

@@ -55,7 +55,7 @@ pub trait Lanes:
 
 /// The bits of √½ as an f32: subtracting them from a float's bits and shifting right by 23 gives
 /// the exponent that leaves a mantissa in [√½, √2).
-const SQRT_HALF_BITS: i32 = 0x3f35_04f3;
+pub(super) const SQRT_HALF_BITS: i32 = 0x3f35_04f3;
 
 /// 1.5·2^23: adding and subtracting it rounds an f32 of magnitude below 2^22 to the nearest
 /// integer (ties to even), with no rounding-mode or libm dependence.
@@ -188,6 +188,37 @@ impl Lanes for F32x8 {
         let biased = n.fast_trunc_int() + i32x8::splat(127);
         self * bytemuck::cast::<_, F32x8>(biased << 23)
     }
+}
+
+/// Eight lanes, loaded from and stored to arrays: [`F32x8`], or one AVX register where the CPU
+/// has AVX2 (see [`run_on_best_lanes`](super::run_on_best_lanes)). The same operations give the
+/// same bits on either.
+pub trait Lanes8: Lanes {
+    /// Lane k = `values[k]`.
+    fn from_array(values: [f32; WIDTH]) -> Self;
+    /// The lanes in order.
+    fn to_array(self) -> [f32; WIDTH];
+}
+
+impl Lanes8 for F32x8 {
+    #[inline(always)]
+    fn from_array(values: [f32; WIDTH]) -> F32x8 {
+        F32x8::from(values)
+    }
+
+    #[inline(always)]
+    fn to_array(self) -> [f32; WIDTH] {
+        F32x8::to_array(self)
+    }
+}
+
+/// Work written over any [`Lanes8`], run by [`run_on_best_lanes`](super::run_on_best_lanes) on
+/// the widest registers this CPU has.
+pub trait LanesJob {
+    /// The result of the work.
+    type Output;
+    /// Does the work on lanes `L`.
+    fn run<L: Lanes8>(self) -> Self::Output;
 }
 
 /// Lanes from eight consecutive values.
