@@ -12,12 +12,13 @@ use super::setup::RasterScratch;
 use super::shader::VaryingColor;
 use super::varying::Varying;
 use super::zbuffer::draw;
+use crate::mesh::Mesh;
 use crate::render::camera::View;
 use crate::render::materials::{MaterialLanes, ObjectMaterials};
 use crate::render::prefetch;
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::shading::Lighting;
-use crate::render::simd::{F32x8, V3, WIDTH};
+use crate::render::simd::{Lanes8, LanesJob, V3, WIDTH, run_on_best_lanes};
 use crate::world::World;
 
 /// Renders `world` through `view` into `out` (`view.width`×`view.height` pixels).
@@ -69,7 +70,7 @@ struct LitVertices<'a> {
 impl LitVertices<'_> {
     /// Colours of the eight vertices `p`, `n` of `object`.
     #[inline(always)]
-    fn light(&self, material: &MaterialLanes<F32x8>, p: V3<F32x8>, n: V3<F32x8>) -> V3<F32x8> {
+    fn light<L: Lanes8>(&self, material: &MaterialLanes<L>, p: V3<L>, n: V3<L>) -> V3<L> {
         let v = (V3::splat(self.eye) - p).normalize_or_zero();
         self.lighting
             .shade_lanes(p, n, v, material, |_, _, facing| facing)
@@ -95,19 +96,14 @@ impl Varying for LitVertices<'_> {
             .zip(&lit)
             .filter(|(_, lit)| **lit)
             .for_each(|((object, (colors, o)), _)| {
-                let material = &this.materials.splat(object);
                 colors.clear();
                 colors.reserve(o.mesh.positions.len());
-                for (p, n) in o
-                    .mesh
-                    .positions
-                    .chunks(WIDTH)
-                    .zip(o.mesh.normals.chunks(WIDTH))
-                {
-                    let count = p.len();
-                    let c = this.light(material, V3::gather(p), V3::gather(n));
-                    colors.extend_from_slice(&c.to_vec3s()[..count]);
-                }
+                run_on_best_lanes(LightAll {
+                    lit: this,
+                    object,
+                    mesh: &o.mesh,
+                    colors,
+                });
             });
         *self.whole = whole;
         self.lit_whole = lit;
@@ -124,7 +120,6 @@ impl Varying for LitVertices<'_> {
             );
             return;
         }
-        let material = &self.materials.splat(object);
         // All the loads first, so that the misses overlap.
         for &t in triangles {
             for i in mesh.triangles[t as usize] {
@@ -134,12 +129,64 @@ impl Varying for LitVertices<'_> {
         }
         let start = out.len();
         out.resize(start + triangles.len(), [Vec3::ZERO; 3]);
-        let colors: &mut [Vec3] = bytemuck::cast_slice_mut(&mut out[start..]);
-        let mut vertices = triangles
+        run_on_best_lanes(LightCorners {
+            lit: self,
+            object,
+            triangles,
+            colors: bytemuck::cast_slice_mut(&mut out[start..]),
+        });
+    }
+
+    fn prefetch(&self, object: usize, triangle: u32) {
+        prefetch::ahead(&self.world.objects[object].mesh.triangles[triangle as usize]);
+    }
+}
+
+/// Lights every vertex of `mesh` (of `object`), in order, appending their colours to `colors`.
+struct LightAll<'a> {
+    lit: &'a LitVertices<'a>,
+    object: usize,
+    mesh: &'a Mesh,
+    colors: &'a mut Vec<Vec3>,
+}
+
+impl LanesJob for LightAll<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<L: Lanes8>(self) {
+        let material = &self.lit.materials.splat::<L>(self.object);
+        let mesh = self.mesh;
+        for (p, n) in mesh.positions.chunks(WIDTH).zip(mesh.normals.chunks(WIDTH)) {
+            let count = p.len();
+            let c = self.lit.light(material, V3::gather(p), V3::gather(n));
+            self.colors.extend_from_slice(&c.to_vec3s()[..count]);
+        }
+    }
+}
+
+/// Lights the corners of mesh triangles `triangles` of `object`, three colours per triangle
+/// into `colors`.
+struct LightCorners<'a> {
+    lit: &'a LitVertices<'a>,
+    object: usize,
+    triangles: &'a [u32],
+    colors: &'a mut [Vec3],
+}
+
+impl LanesJob for LightCorners<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<L: Lanes8>(self) {
+        let mesh = &self.lit.world.objects[self.object].mesh;
+        let material = &self.lit.materials.splat::<L>(self.object);
+        let mut vertices = self
+            .triangles
             .iter()
             .flat_map(|&t| mesh.triangles[t as usize])
             .map(|i| i as usize);
-        for colors in colors.chunks_mut(WIDTH) {
+        for colors in self.colors.chunks_mut(WIDTH) {
             let mut ids = [0; WIDTH];
             for id in &mut ids[..colors.len()] {
                 *id = vertices.next().expect("three vertices per triangle");
@@ -151,17 +198,15 @@ impl Varying for LitVertices<'_> {
             let gather = |values: &[Vec3]| {
                 let v = ids.map(|i| values[i]);
                 V3::new(
-                    F32x8::from(v.map(|v| v.x)),
-                    F32x8::from(v.map(|v| v.y)),
-                    F32x8::from(v.map(|v| v.z)),
+                    L::from_array(v.map(|v| v.x)),
+                    L::from_array(v.map(|v| v.y)),
+                    L::from_array(v.map(|v| v.z)),
                 )
             };
-            let lit = self.light(material, gather(&mesh.positions), gather(&mesh.normals));
+            let lit = self
+                .lit
+                .light(material, gather(&mesh.positions), gather(&mesh.normals));
             colors.copy_from_slice(&lit.to_vec3s()[..colors.len()]);
         }
-    }
-
-    fn prefetch(&self, object: usize, triangle: u32) {
-        prefetch::ahead(&self.world.objects[object].mesh.triangles[triangle as usize]);
     }
 }

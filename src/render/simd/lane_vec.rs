@@ -4,7 +4,7 @@ use std::ops::{Add, AddAssign, Mul, Neg, Sub};
 
 use glam::Vec3;
 
-use super::lanes::{F32x8, Lanes, Lanes8, WIDTH};
+use super::lanes::{Lanes, Lanes8, WIDTH};
 
 /// `x`, `y` and `z` each hold one component of every lane's vector.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -81,7 +81,7 @@ impl V3<f32> {
     }
 }
 
-impl V3<F32x8> {
+impl<L: Lanes8> V3<L> {
     /// Lane k holds `vectors[k]`; lanes past the end repeat the last vector (`vectors` holds 1
     /// to [`WIDTH`] of them).
     ///
@@ -89,7 +89,7 @@ impl V3<F32x8> {
     /// wherever this is inlined, while a closure-built array was at times left as a call per
     /// lane, which cost the Gouraud vertex stage a tenth of its time.
     #[inline]
-    pub fn gather(vectors: &[Vec3]) -> V3<F32x8> {
+    pub fn gather(vectors: &[Vec3]) -> V3<L> {
         debug_assert!((1..=WIDTH).contains(&vectors.len()));
         let last = vectors.len() - 1;
         let (mut x, mut y, mut z) = ([0.0; WIDTH], [0.0; WIDTH], [0.0; WIDTH]);
@@ -97,11 +97,9 @@ impl V3<F32x8> {
             let v = vectors[k.min(last)];
             (x[k], y[k], z[k]) = (v.x, v.y, v.z);
         }
-        V3::new(F32x8::from(x), F32x8::from(y), F32x8::from(z))
+        V3::new(L::from_array(x), L::from_array(y), L::from_array(z))
     }
-}
 
-impl<L: Lanes8> V3<L> {
     /// The vectors of the lanes.
     #[inline(always)]
     pub fn to_vec3s(self) -> [Vec3; WIDTH] {
