@@ -2,7 +2,7 @@
 //! Mpixels/s per shading, ray tracer Mrays/s per kind of ray, and BVH build time.
 
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use super::area::total_face_area;
 use super::runner::{summarize, time_render};
@@ -144,8 +144,7 @@ pub fn measure(
     for algorithm in [Algorithm::Gouraud, Algorithm::Phong] {
         let options = RenderOptions::new(algorithm, size.width, size.height);
         let mut kept = Renderer::new(options);
-        // One untimed render first, as a live preview has drawn frames before the one timed.
-        time_kept_render(&mut kept, world, &scene.camera, &mut frame)?;
+        warm_up(&mut kept, world, &scene.camera, &mut frame)?;
         let kept_runs = (0..reps.max(1))
             .map(|_| time_kept_render(&mut kept, world, &scene.camera, &mut frame))
             .collect::<Result<Vec<_>, _>>()?;
@@ -200,6 +199,31 @@ fn median_total(runs: &[RenderStats]) -> Duration {
 }
 
 /// One render by `renderer`, kept from render to render, into `frame`.
+/// How long a kept renderer draws untimed frames before it is timed (at least one frame).
+///
+/// A live preview has been drawing for a while when a key is pressed; a fresh process has not.
+/// On a two-core virtual machine the first tens of milliseconds of 2-thread frames ran up to
+/// twice as slow as the rest (bunny, 160×96, Gouraud, median of 7 frames, 20 fresh processes
+/// each: after 1 untimed frame, 0.49–1.05 ms, half of them near 1 ms; after 30 frames,
+/// 0.48–0.91 ms; after 100 frames, about 60 ms, all 0.48–0.54 ms).
+const WARM_UP: Duration = Duration::from_millis(200);
+
+/// Renders untimed frames with `renderer` until [`WARM_UP`] has passed, at least one.
+fn warm_up(
+    renderer: &mut Renderer,
+    world: &Arc<World>,
+    camera: &Camera,
+    frame: &mut Frame,
+) -> Result<(), RenderError> {
+    let started = Instant::now();
+    loop {
+        time_kept_render(renderer, world, camera, frame)?;
+        if started.elapsed() >= WARM_UP {
+            return Ok(());
+        }
+    }
+}
+
 fn time_kept_render(
     renderer: &mut Renderer,
     world: &Arc<World>,
