@@ -36,8 +36,9 @@ use wide::{CmpEq, CmpGe, i32x8, u32x8};
 /// depth test on 1/w, keeping the nearest triangle per pixel centre; then the covered pixels of
 /// each row are handed to `shader` eight at a time as [`Fragments`], on the widest lanes the
 /// CPU has, with `varying` interpolated perspective-correctly, and it writes their colours into
-/// the row. Uncovered pixels get the background. Shading after the depth test shades each pixel once however much
-/// overdraw the scene has, and shading right after each band keeps the band's buffers in cache.
+/// the row. Uncovered pixels get the background. Shading after the depth test shades each pixel
+/// once however much overdraw the scene has, and shading right after each band keeps the band's
+/// buffers in cache.
 pub fn draw(
     geometry: &mut Geometry,
     world: &World,
