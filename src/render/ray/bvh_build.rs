@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use super::bvh::{Bvh, Inner, MAX_TREE_DEPTH, Node};
 use super::bvh_buffer::BuildBuffer;
 use super::bvh_prims::{Extent, PartitionScratch, Prim, partition, partition_scan};
-use super::bvh_sah::{BinScratch, Binning};
+use super::bvh_sah::{BinScratch, Binning, always_leaf};
 use super::huge_pages;
 use crate::mesh::Mesh;
 use crate::render::progress::{Cancelled, Progress};
@@ -252,7 +252,7 @@ fn split_node(
     scratch: &mut Scratch,
 ) -> Option<Parted> {
     let n = prims.len();
-    if n <= 2 || depth + 1 >= MAX_TREE_DEPTH {
+    if n <= 2 || (n <= MAX_LEAF && always_leaf(n)) || depth + 1 >= MAX_TREE_DEPTH {
         return None;
     }
     let binning = Binning::new(&extent.centroids, n);

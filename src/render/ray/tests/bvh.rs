@@ -323,3 +323,26 @@ proptest! {
         );
     }
 }
+
+/// `n` unit triangles a thousand units apart along x: any split of them is cheap in area.
+fn scattered(n: usize) -> Mesh {
+    let triangles: Vec<[Vec3; 3]> = (0..n)
+        .map(|k| {
+            let a = Vec3::new(k as f32 * 1000.0, 0.0, 0.0);
+            [a, a + Vec3::X, a + Vec3::Y]
+        })
+        .collect();
+    mesh_from(&triangles)
+}
+
+#[test]
+fn four_triangles_stay_one_leaf_and_eight_split() {
+    // A split costs at least one visit (four triangle tests), so a node of four triangles is a
+    // leaf however far apart they lie: the builder skips binning it. Eight scattered triangles
+    // are worth splitting.
+    let progress = Progress::new();
+    let four = Bvh::build_cancellable(&scattered(4), &progress).expect("not cancelled");
+    assert_eq!(four.measure_depth(), 1, "four triangles make one leaf");
+    let eight = Bvh::build_cancellable(&scattered(8), &progress).expect("not cancelled");
+    assert!(eight.measure_depth() > 1, "eight scattered triangles split");
+}
