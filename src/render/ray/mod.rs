@@ -16,6 +16,7 @@ mod packet;
 mod packet_avx2;
 mod primary;
 mod tracer;
+mod triangle_lanes;
 
 pub(crate) use accel::SceneAccel;
 pub(crate) use primary::primary_coverage;

@@ -10,10 +10,12 @@
 //! time: bunny 219 → 163–167 ms, 1.31M-triangle icosphere 421–468 → 243–328 ms.
 #![allow(unsafe_code)]
 
+use glam::Vec3A;
 use std::arch::x86_64::{
-    __m256, _CMP_GE_OQ, _CMP_GT_OQ, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_ps, _mm256_and_ps,
-    _mm256_andnot_ps, _mm256_blendv_ps, _mm256_cmp_ps, _mm256_div_ps, _mm256_max_ps, _mm256_min_ps,
-    _mm256_movemask_ps, _mm256_mul_ps, _mm256_sub_ps,
+    __m128, __m256, _CMP_GE_OQ, _CMP_GT_OQ, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_ps, _mm256_and_ps,
+    _mm256_andnot_ps, _mm256_blendv_ps, _mm256_castps128_ps256, _mm256_cmp_ps, _mm256_div_ps,
+    _mm256_insertf128_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
+    _mm256_shuffle_ps, _mm256_sub_ps, _mm256_unpackhi_ps, _mm256_unpacklo_ps,
 };
 use std::ops::{Add, BitAnd, Div, Mul, Sub};
 
@@ -134,6 +136,34 @@ impl Lane8 for Avx {
     fn any(self) -> bool {
         // SAFETY: as in `avx!`.
         unsafe { _mm256_movemask_ps(self.0) != 0 }
+    }
+    #[inline(always)]
+    fn transpose(rows: [&Vec3A; 8]) -> [Avx; 3] {
+        let r = rows.map(|v| __m128::from(*v));
+        // SAFETY: as in `avx!`.
+        unsafe {
+            let pair =
+                |a: __m128, b: __m128| _mm256_insertf128_ps::<1>(_mm256_castps128_ps256(a), b);
+            let (a0, a1, a2, a3) = (
+                pair(r[0], r[4]),
+                pair(r[1], r[5]),
+                pair(r[2], r[6]),
+                pair(r[3], r[7]),
+            );
+            // x0 x1 y0 y1 | x4 x5 y4 y5, and z0 z1 w0 w1 | z4 z5 w4 w5; likewise 2, 3, 6, 7.
+            let (lo01, hi01) = (_mm256_unpacklo_ps(a0, a1), _mm256_unpackhi_ps(a0, a1));
+            let (lo23, hi23) = (_mm256_unpacklo_ps(a2, a3), _mm256_unpackhi_ps(a2, a3));
+            [
+                Avx(_mm256_shuffle_ps::<0x44>(lo01, lo23)),
+                Avx(_mm256_shuffle_ps::<0xEE>(lo01, lo23)),
+                Avx(_mm256_shuffle_ps::<0x44>(hi01, hi23)),
+            ]
+        }
+    }
+    #[inline(always)]
+    fn bits(self) -> u32 {
+        // SAFETY: as in `avx!`.
+        unsafe { _mm256_movemask_ps(self.0) as u32 }
     }
 }
 

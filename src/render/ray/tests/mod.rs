@@ -3,5 +3,6 @@
 mod bvh;
 mod bvh_partition;
 mod intersect;
+mod lane_leaves;
 mod tracer;
 mod watertight;
