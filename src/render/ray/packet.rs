@@ -690,7 +690,8 @@ impl Bvh {
         let Some(root) = &self.root else {
             return;
         };
-        if !rays.enter(root.lo(), root.hi(), query.limit()).0.any() {
+        let entered = rays.enter(root.lo(), root.hi(), query.limit()).0.bits();
+        if entered == 0 {
             return;
         }
         // Pending far children: link (start, count), the nearest entry of any lane, and the
@@ -698,7 +699,7 @@ impl Bvh {
         let mut stack = [(0u32, 0u32, 0f32, 0u32); MAX_TREE_DEPTH];
         let mut top = 0;
         let mut current = (root.start(), root.count());
-        let mut lanes = u32::MAX;
+        let mut lanes = entered;
         loop {
             let (start, count) = current;
             if count > 0 {
