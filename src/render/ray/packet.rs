@@ -104,12 +104,18 @@ impl RayPacket {
     }
 }
 
-/// Leaves entered by at most this many of a packet's lanes test each of those rays against
-/// up to eight of the leaf's triangles at once, rather than each triangle against all eight
-/// rays. (1.31M-triangle icosphere at 640×360, where leaves are entered by 1.3–1.6 lanes on
-/// average, 1 thread, median of 30: 33.4–34.9 → 29.7–30.5 ms; 2 at 29.8, 5 at 29.2. The bunny at
-/// 1920×1080, 3.2–3.5 lanes per leaf, lost 1–3% at 1 to 3 and 4% at 5.)
-const FEW_LANES: u32 = 3;
+/// Whether a leaf of `triangles` triangles entered by the lanes of `lanes` tests each of those
+/// rays against up to eight of its triangles at once, rather than each triangle against all
+/// eight rays: when few lanes entered (at most 3), fewer than half as many as it has triangles.
+/// 1 thread, median of 15, three alternations: the 1.31M-triangle icosphere at 640×360, whose
+/// leaves are entered by 1.3–1.6 lanes on average, 33.2–34.3 → 29.5–30.1 ms; the bunny at
+/// 1920×1080, 3.2–3.5 lanes per leaf, 81.5–82.3 → 81.5–83.7 ms (83.8–84.9 ms with the lane
+/// count alone deciding).
+#[inline(always)]
+fn lanes_apart(lanes: u32, triangles: usize) -> bool {
+    let entered = lanes.count_ones() as usize;
+    entered <= 3 && 2 * entered < triangles
+}
 
 /// Eight `f32` lanes as the packet walk needs them: the `wide` type everywhere, and AVX2
 /// registers where the CPU has them (`super::packet_avx2`). Both give the same bits: every
@@ -467,7 +473,7 @@ impl<L: Lane8> PacketQuery<L> for Nearest<'_, L> {
 
     #[inline(always)]
     fn leaf(&mut self, bvh: &Bvh, first: usize, end: usize, lanes: u32) -> bool {
-        if lanes.count_ones() > FEW_LANES {
+        if !lanes_apart(lanes, end - first) {
             for k in first..end {
                 self.hits
                     .add(self.rays, &bvh.triangles[k], k, bvh.ids[k], self.object);
@@ -573,7 +579,7 @@ impl<L: Lane8> PacketQuery<L> for AnyHit<'_, L> {
     #[inline(always)]
     fn leaf(&mut self, bvh: &Bvh, first: usize, end: usize, lanes: u32) -> bool {
         let lanes = lanes & self.pending.bits();
-        if lanes.count_ones() > FEW_LANES {
+        if !lanes_apart(lanes, end - first) {
             for tri in &bvh.triangles[first..end] {
                 let (found, _, _, _) = self.rays.meet_triangle(tri, self.t_max);
                 self.pending = self.pending.and_not(found);
