@@ -8,6 +8,8 @@ use rayon::prelude::*;
 use wide::f32x4;
 
 use super::bvh_prims::{Aabb, Prim, Side};
+#[cfg(target_arch = "x86_64")]
+use super::bvh_sah_avx2::{self, WideBins};
 
 /// Centroid bins per axis.
 pub const BINS: usize = 16;
@@ -52,9 +54,9 @@ const _: () = assert!(
 /// read-modify-write in memory. [`AxisBins::settle`] moves it into `counts`. A run holds fewer
 /// than 2²⁴ prims, so the float count is exact.
 #[derive(Debug, Clone, Copy)]
-struct AxisBins {
-    boxes: [Aabb; BINS],
-    counts: [u32; BINS],
+pub(super) struct AxisBins {
+    pub(super) boxes: [Aabb; BINS],
+    pub(super) counts: [u32; BINS],
 }
 
 impl AxisBins {
@@ -92,7 +94,7 @@ impl AxisBins {
 
 /// The bins of the three axes; only the axes binned are filled.
 #[derive(Debug, Clone, Copy)]
-pub struct Bins([AxisBins; 3]);
+pub struct Bins(pub(super) [AxisBins; 3]);
 
 /// Working memory for binning, kept by a thread from node to node: two sets of bins (the
 /// result, and a second set that takes every other prim), so that no node pays for clearing
@@ -101,13 +103,24 @@ pub struct Bins([AxisBins; 3]);
 pub struct BinScratch {
     bins: Bins,
     odd: Bins,
+    /// Both sets as AVX registers, where the CPU has AVX2.
+    #[cfg(target_arch = "x86_64")]
+    wide: Box<WideBins>,
 }
 
 impl BinScratch {
+    /// The bins of the last run binned.
+    #[cfg(test)]
+    pub(super) fn bins(&self) -> &Bins {
+        &self.bins
+    }
+
     pub fn new() -> BinScratch {
         BinScratch {
             bins: Bins([AxisBins::EMPTY; 3]),
             odd: Bins([AxisBins::EMPTY; 3]),
+            #[cfg(target_arch = "x86_64")]
+            wide: Box::new(WideBins::new()),
         }
     }
 }
@@ -152,9 +165,27 @@ impl Binning {
         }
     }
 
-    /// The prim's bin on each axis (lane 3 is 0).
+    /// Bins in use, 2..=[`BINS`].
     #[inline]
-    fn bins(&self, p: &Prim) -> [i32; 4] {
+    pub(super) fn count(&self) -> usize {
+        self.count
+    }
+
+    /// The axes binned.
+    #[inline]
+    pub(super) fn axes(&self) -> std::ops::Range<usize> {
+        self.axes.clone()
+    }
+
+    /// Whether runs of `prims` on these axes use one set of bins ([`ONE_SET_MAX`]).
+    #[inline]
+    pub(super) fn one_set(&self, prims: usize) -> bool {
+        prims < ONE_SET_MAX && self.axes.len() == 1
+    }
+
+    /// The prim's bin on each axis (lane 3 is 0).
+    #[inline(always)]
+    pub(super) fn bins(&self, p: &Prim) -> [i32; 4] {
         let f = (p.centroid2() - self.origin) * self.scale;
         // f ≥ 0 by construction; clamped to the last bin, the truncation is in range.
         f.fast_min(self.top).fast_trunc_int().to_array()
@@ -196,7 +227,16 @@ impl Binning {
     /// alternate prims, so that consecutive prims falling into the same bin do not wait on each
     /// other's stores; short runs on one axis use one ([`ONE_SET_MAX`]).
     fn fill_run(&self, prims: &[Prim], scratch: &mut BinScratch) {
-        if prims.len() < ONE_SET_MAX && self.axes.len() == 1 {
+        #[cfg(target_arch = "x86_64")]
+        if bvh_sah_avx2::fill_run(self, prims, &mut scratch.wide, &mut scratch.bins) {
+            return;
+        }
+        self.fill_run_lanes(prims, scratch);
+    }
+
+    /// [`Binning::fill_run`] on four-lane registers, whatever the CPU.
+    pub(super) fn fill_run_lanes(&self, prims: &[Prim], scratch: &mut BinScratch) {
+        if self.one_set(prims.len()) {
             let axis = self.axes.start;
             let bins = &mut scratch.bins.0[axis];
             bins.boxes[..self.count].fill(Aabb::EMPTY);

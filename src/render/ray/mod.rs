@@ -8,6 +8,8 @@ mod bvh_buffer;
 mod bvh_build;
 mod bvh_prims;
 mod bvh_sah;
+#[cfg(target_arch = "x86_64")]
+mod bvh_sah_avx2;
 mod half_line;
 mod huge_pages;
 mod intersect;
