@@ -58,6 +58,9 @@ pub struct RayRate {
     pub primary_only: RenderStats,
     /// The median render with primary rays and their shadow rays, no reflections.
     pub with_shadows: RenderStats,
+    /// The median BVH build of all these renders, each of which built its own (one sample,
+    /// the median render's, drifts with the page faults of that one build).
+    pub build: Duration,
 }
 
 /// One kind of ray timed on its own.
@@ -161,10 +164,12 @@ pub fn measure(
         });
     }
     let full = RenderOptions::new(Algorithm::Ray, size.width, size.height);
+    let mut builds = Vec::new();
     let mut median = |options: RenderOptions| -> Result<RenderStats, RenderError> {
         let mut runs = (0..reps.max(1))
             .map(|_| time_render(world, &scene.camera, &options, &mut frame))
             .collect::<Result<Vec<_>, _>>()?;
+        builds.extend(runs.iter().map(|r| r.bvh_build));
         runs.sort_by_key(|r| r.draw);
         Ok(runs[runs.len() / 2])
     };
@@ -183,10 +188,12 @@ pub fn measure(
     } else {
         median(full)?
     };
+    builds.sort();
     let ray = RayRate {
         stats,
         primary_only,
         with_shadows,
+        build: builds[builds.len() / 2],
     };
     Ok(Throughput { size, raster, ray })
 }

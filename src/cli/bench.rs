@@ -165,7 +165,7 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
         "{:8} {:>9} ms  BVH build {} ms, tracing {} ms",
         "Ray",
         number(ray.time().as_secs_f64() * 1e3),
-        number(s.bvh_build.as_secs_f64() * 1e3),
+        number(ray.build.as_secs_f64() * 1e3),
         number(ray.trace_time().as_secs_f64() * 1e3)
     );
     for kind in ray.kinds() {
@@ -188,7 +188,7 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
     println!(
         "ray-throughput tracing_ms={:.3} build_ms={:.3} rays={} primary_ms={:.3} primary_rays={} shadow_ms={:.3} shadow_rays={} reflection_ms={:.3} reflection_rays={}",
         ray.trace_time().as_secs_f64() * 1e3,
-        s.bvh_build.as_secs_f64() * 1e3,
+        ray.build.as_secs_f64() * 1e3,
         s.rays.total(),
         primary.time.as_secs_f64() * 1e3,
         primary.rays,
