@@ -7,6 +7,8 @@ mod fragments;
 mod gouraud;
 mod phong;
 mod projected;
+#[cfg(target_arch = "x86_64")]
+mod scan_avx2;
 mod screen_triangle;
 mod setup;
 mod shader;

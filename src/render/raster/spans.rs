@@ -21,17 +21,17 @@ const LANE_SPAN_EXTENT: i32 = 1 << 13;
 /// One edge of a counter-clockwise screen triangle: its function at the first centre scanned
 /// (top-left bias included) and its change per column and per row, fixed-point products.
 #[derive(Clone, Copy)]
-struct Edge {
-    at_start: i64,
-    per_x: i64,
-    per_y: i64,
+pub(super) struct Edge {
+    pub(super) at_start: i64,
+    pub(super) per_x: i64,
+    pub(super) per_y: i64,
 }
 
 /// The three edges of `t`, evaluated from the centre of pixel (`t.min_x`, `y0`). Edge k is
 /// opposite vertex k: it runs from vertex k+1 to vertex k+2, and its function is vertex k's
 /// unnormalised barycentric weight.
 #[inline(always)]
-fn edges(t: &ScreenTriangle, y0: i32) -> [Edge; 3] {
+pub(super) fn edges(t: &ScreenTriangle, y0: i32) -> [Edge; 3] {
     let (px, py) = (
         (t.min_x << SUBPIXEL_BITS) + HALF,
         (y0 << SUBPIXEL_BITS) + HALF,

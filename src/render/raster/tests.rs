@@ -346,7 +346,7 @@ impl Shader for WriteDepth {
 #[test]
 fn setup_compiled_for_avx2_draws_the_bits_of_the_baseline_build() {
     // Triangle setup, binning and the planes of the varying run compiled for AVX2 where the CPU
-    // has it, and the rows are shaded on AVX registers: the images must be those of the
+    // has it, small triangles are scanned and the rows are shaded on AVX registers: the images must be those of the
     // baseline build, bit for bit, including triangles clipped at the near plane and the guard
     // band. (On a CPU without AVX2 both are the baseline.)
     use crate::render::cpu::BASELINE_ONLY;
@@ -356,6 +356,18 @@ fn setup_compiled_for_avx2_draws_the_bits_of_the_baseline_build() {
     close.camera.position = Vec3::new(0.3, 0.4, 0.9);
     close.camera.fov = 100.0;
     scenes.push(close);
+    // Thousands of triangles of a few pixels each, scanned eight centres at a time on AVX2
+    // registers where the CPU has them; some in front of others, some edge on.
+    scenes.push(scene(
+        r#"
+camera = { position = [0.4, 0.3, 2.6], target = [0.0, 0.0, 0.0], fov = 45.0 }
+light = [{ position = [3.0, 4.0, 5.0] }]
+object = [
+    { type = "icosahedron", radius = 1.0, subdivisions = 4 },
+    { type = "icosahedron", center = [0.5, 0.2, -1.0], radius = 0.8, subdivisions = 3 },
+]
+"#,
+    ));
     let progress = Progress::new();
     for scene in &scenes {
         let world = world(scene);

@@ -18,6 +18,8 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::fragments::{Fragments, Packer};
+#[cfg(target_arch = "x86_64")]
+use super::scan_avx2::{Avx2, Band};
 use super::screen_triangle::{Planes, ScreenTriangle};
 use super::setup::{BandBuffers, Bands, Geometry};
 use super::shader::Shader;
@@ -370,10 +372,25 @@ fn scan_band<'a>(
     let bottom = (top + rows) as i32 - 1;
     let row_start = |y: i32| (y as u32 - top) as usize * width as usize;
     let lanes = F32x8::from(std::array::from_fn::<f32, WIDTH, _>(|k| k as f32));
+    #[cfg(target_arch = "x86_64")]
+    let avx2 = Avx2::detect();
     for (i, t) in bin.enumerate() {
         let id = i as u32 + 1;
         let y0 = t.min_y.max(top as i32);
         let y1 = t.max_y.min(bottom);
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = avx2
+            && fits_lanes(t)
+        {
+            let mut band = Band {
+                top,
+                width,
+                depth,
+                ids,
+            };
+            avx2.scan_small(t, y0, y1, &mut band, id);
+            continue;
+        }
         if fits_lanes(t) {
             let dz = F32x8::splat(t.inv_w.per_x);
             // 1/w at the first covered centre of row `row`.
