@@ -25,10 +25,13 @@ use crate::render::progress::{Cancelled, Progress};
 /// A node with at most this many triangles may become a leaf when the heuristic says so.
 const MAX_LEAF: usize = 8;
 /// Nodes with at least this many triangles build their children in parallel. Low enough that
-/// a mesh of a few thousand triangles uses both cores: at 16·1024 such a mesh was built on one
-/// thread, and Embree built it faster (spot, 5,856 triangles: 1.03–1.8 → 0.5–1.25 ms; cow,
-/// teapot and the bunny 15–25% faster, the 1.31M-triangle icosphere 3–5%; the same trees).
-const PARALLEL_MIN: usize = 2 * 1024;
+/// a mesh of a thousand triangles uses both cores: at 16·1024 a mesh of a few thousand was built
+/// on one thread, and Embree built it faster (spot, 5,856 triangles: 1.03–1.8 → 0.5–1.25 ms;
+/// cow, teapot and the bunny 15–25% faster, the 1.31M-triangle icosphere 3–5%), and at 2·1024
+/// suzanne's 968 triangles were (0.12 → 0.06 ms at 512, median of 1,000 builds, two threads;
+/// teapot 0.52 → 0.44 ms; the bunny and the icosphere unchanged; at 256 no faster). The trees
+/// are the same whatever this is.
+const PARALLEL_MIN: usize = 512;
 /// Nodes with at least this many triangles partition with the swapping scan, which needs no
 /// memory, rather than with working memory of their own.
 const SCAN_MIN: usize = 16 * 1024;
