@@ -5,7 +5,7 @@
 //! min(−a, −b) exactly, and picks the same operand on ties, signed zeros included), and one
 //! add that counts the prim in lane 7 (downwards: lane 7 holds −count). That is one load, one
 //! store and two operations per prim and axis, where the four-lane boxes of `bvh_sah` take two
-//! of each. The bins, their counts and the order in which prims join them are those of
+//! loads, two stores and three operations (`min`, `max`, add). The bins, their counts and the order in which prims join them are those of
 //! [`Binning::fill_run`](super::bvh_sah::Binning), so the bins, and the tree, are the same bits.
 //!
 //! Measured gain, the reason for the `unsafe` here: see [`fill_run`].
@@ -42,7 +42,7 @@ const DROP_INDEX: [u32; 8] = [!0, !0, !0, 0, !0, !0, !0, !0];
 const COUNT_ONE: WideBox = [-0.0, -0.0, -0.0, -0.0, -0.0, -0.0, -0.0, -1.0];
 
 /// The bins of one axis while binning, as registers.
-pub(super) type WideAxis = [__m256; BINS];
+type WideAxis = [__m256; BINS];
 
 /// Two sets of bins for each axis: even prims go to the first, odd ones to the second.
 #[derive(Clone, Copy)]
