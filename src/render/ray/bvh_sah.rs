@@ -39,20 +39,73 @@ const CHUNK: usize = 8 * 1024;
 /// three alternations: 256–263 → 244–247 ms; at 128 prims half the gain, at 1,024 a loss).
 const ONE_SET_MAX: usize = 32;
 
-/// Added to a bin's `hi` after each prim: the fourth lane counts the prim, and −0 leaves every
-/// coordinate bit for bit as it is (x + −0 = x for every x, ±0 included).
-const COUNT_ONE: f32x4 = f32x4::new([-0.0, -0.0, -0.0, 1.0]);
 const _: () = assert!(
     BINS.is_power_of_two(),
     "bin indices are masked with BINS − 1"
 );
 
-/// The triangle boxes and centroid counts of one axis' bins.
+/// A bin's box while a run of prims is binned, with the bin's count in a lane of its own: one
+/// vector operation counts a prim instead of a second read-modify-write in memory. A run holds
+/// fewer than 2²⁴ prims, so the float count is exact.
 ///
-/// While a run of prims is binned, a bin's count rides in the fourth lane of its box's `hi`
-/// (a prim's `hi` has 0 there, and the empty box −∞): one vector add instead of a second
-/// read-modify-write in memory. [`AxisBins::settle`] moves it into `counts`. A run holds fewer
-/// than 2²⁴ prims, so the float count is exact.
+/// Two layouts: [`LaneBox`], two four-lane registers, on any CPU; and one AVX register in
+/// `bvh_sah_avx2`. Both add a prim with the same IEEE operations, and [`Binning::fill_sets`]
+/// gives them the prims, and joins their sets, in the same order, so their bins are the same
+/// bits and so is the tree.
+pub(super) trait BinBox: Copy {
+    /// A prim as this layout adds it.
+    type Prim: Copy;
+    /// The box that holds nothing, count 0.
+    fn empty() -> Self;
+    fn prim(p: &Prim) -> Self::Prim;
+    /// Grows the box to hold the prim `p` and counts it.
+    fn add(&mut self, p: Self::Prim);
+    /// The box and its count.
+    fn settle(self) -> (Aabb, u32);
+}
+
+/// [`BinBox`] on two four-lane registers: the count rides in the fourth lane of `hi` (a prim's
+/// `hi` has 0 there, and the empty box −∞).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct LaneBox(Aabb);
+
+/// Added to a bin's `hi` after each prim: the fourth lane counts the prim, and −0 leaves every
+/// coordinate bit for bit as it is (x + −0 = x for every x, ±0 included).
+const COUNT_ONE: f32x4 = f32x4::new([-0.0, -0.0, -0.0, 1.0]);
+
+impl BinBox for LaneBox {
+    type Prim = Prim;
+
+    #[inline(always)]
+    fn empty() -> LaneBox {
+        LaneBox(Aabb::EMPTY)
+    }
+
+    #[inline(always)]
+    fn prim(p: &Prim) -> Prim {
+        *p
+    }
+
+    #[inline(always)]
+    fn add(&mut self, p: Prim) {
+        let bin = &mut self.0;
+        bin.lo = bin.lo.fast_min(p.lo());
+        bin.hi = bin.hi.fast_max(p.hi()) + COUNT_ONE;
+    }
+
+    #[inline(always)]
+    fn settle(self) -> (Aabb, u32) {
+        // An empty bin's lane is −∞, which the saturating cast turns into 0.
+        (self.0, self.0.hi.as_array_ref()[3] as u32)
+    }
+}
+
+/// Two sets of bins of each axis while a run is binned: even prims go to the first, odd ones to
+/// the second, so that consecutive prims falling into the same bin do not wait on each other's
+/// stores.
+pub(super) type BinSets<B> = [[[B; BINS]; 3]; 2];
+
+/// The triangle boxes and centroid counts of one axis' bins.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct AxisBins {
     pub(super) boxes: [Aabb; BINS],
@@ -64,25 +117,6 @@ impl AxisBins {
         boxes: [Aabb::EMPTY; BINS],
         counts: [0; BINS],
     };
-
-    /// Adds `p` to bin `b` (< [`BINS`]), its count in the box's fourth lane.
-    #[inline]
-    fn add(&mut self, b: usize, p: &Prim) {
-        let bin = &mut self.boxes[b & (BINS - 1)];
-        bin.lo = bin.lo.fast_min(p.lo());
-        bin.hi = bin.hi.fast_max(p.hi()) + COUNT_ONE;
-    }
-
-    /// Joins the bins of a run binned in two sets (`self` and `odd`, counts in their boxes'
-    /// fourth lanes) into `self`, counts in `counts`.
-    fn settle(&mut self, odd: &AxisBins, used: usize) {
-        // An empty bin's lane is −∞, which the saturating cast turns into 0.
-        let count = |b: &Aabb| b.hi.as_array_ref()[3] as u32;
-        for b in 0..used {
-            self.counts[b] = count(&self.boxes[b]) + count(&odd.boxes[b]);
-            self.boxes[b] = self.boxes[b].union(odd.boxes[b]);
-        }
-    }
 
     fn merge(&mut self, other: &AxisBins, used: usize) {
         for b in 0..used {
@@ -96,14 +130,14 @@ impl AxisBins {
 #[derive(Debug, Clone, Copy)]
 pub struct Bins(pub(super) [AxisBins; 3]);
 
-/// Working memory for binning, kept by a thread from node to node: two sets of bins (the
-/// result, and a second set that takes every other prim), so that no node pays for clearing
-/// or copying more bins than it uses.
+/// Working memory for binning, kept by a thread from node to node: the bins of the last run,
+/// and the sets they were binned in, of which a node clears only the bins it uses.
 #[derive(Debug, Clone)]
 pub struct BinScratch {
     bins: Bins,
-    odd: Bins,
-    /// Both sets as AVX registers, where the CPU has AVX2.
+    /// The sets on four-lane registers.
+    lanes: Box<BinSets<LaneBox>>,
+    /// The sets as AVX registers, where the CPU has AVX2.
     #[cfg(target_arch = "x86_64")]
     wide: Box<WideBins>,
 }
@@ -118,7 +152,7 @@ impl BinScratch {
     pub fn new() -> BinScratch {
         BinScratch {
             bins: Bins([AxisBins::EMPTY; 3]),
-            odd: Bins([AxisBins::EMPTY; 3]),
+            lanes: Box::new([[[LaneBox::empty(); BINS]; 3]; 2]),
             #[cfg(target_arch = "x86_64")]
             wide: Box::new(WideBins::new()),
         }
@@ -166,21 +200,15 @@ impl Binning {
     }
 
     /// Bins in use, 2..=[`BINS`].
-    #[inline]
+    #[cfg(test)]
     pub(super) fn count(&self) -> usize {
         self.count
     }
 
     /// The axes binned.
-    #[inline]
+    #[cfg(test)]
     pub(super) fn axes(&self) -> std::ops::Range<usize> {
         self.axes.clone()
-    }
-
-    /// Whether runs of `prims` on these axes use one set of bins ([`ONE_SET_MAX`]).
-    #[inline]
-    pub(super) fn one_set(&self, prims: usize) -> bool {
-        prims < ONE_SET_MAX && self.axes.len() == 1
     }
 
     /// The prim's bin on each axis (lane 3 is 0).
@@ -215,17 +243,8 @@ impl Binning {
         &scratch.bins
     }
 
-    /// Clears the bins in use of the axes binned.
-    fn clear(&self, bins: &mut Bins) {
-        for axis in self.axes.clone() {
-            let bins = &mut bins.0[axis];
-            bins.boxes[..self.count].fill(Aabb::EMPTY);
-        }
-    }
-
-    /// The bins of `prims`, in this thread, into `scratch.bins`. Two sets of bins take
-    /// alternate prims, so that consecutive prims falling into the same bin do not wait on each
-    /// other's stores; short runs on one axis use one ([`ONE_SET_MAX`]).
+    /// The bins of `prims`, in this thread, into `scratch.bins`: on AVX registers where the
+    /// CPU has AVX2, else on four-lane ones.
     fn fill_run(&self, prims: &[Prim], scratch: &mut BinScratch) {
         #[cfg(target_arch = "x86_64")]
         if bvh_sah_avx2::fill_run(self, prims, &mut scratch.wide, &mut scratch.bins) {
@@ -236,68 +255,96 @@ impl Binning {
 
     /// [`Binning::fill_run`] on four-lane registers, whatever the CPU.
     pub(super) fn fill_run_lanes(&self, prims: &[Prim], scratch: &mut BinScratch) {
-        if self.one_set(prims.len()) {
-            let axis = self.axes.start;
-            let bins = &mut scratch.bins.0[axis];
-            bins.boxes[..self.count].fill(Aabb::EMPTY);
-            for p in prims {
-                bins.add(self.bins(p)[axis] as usize, p);
+        self.fill_sets(prims, &mut scratch.lanes, &mut scratch.bins);
+    }
+
+    /// The bins of `prims` into `out`, binned in `sets` of layout `B`: short runs on one axis
+    /// in the first set alone ([`ONE_SET_MAX`]), longer ones alternating between both. Only
+    /// the bins in use of the axes binned are cleared and joined.
+    #[inline(always)]
+    pub(super) fn fill_sets<B: BinBox>(
+        &self,
+        prims: &[Prim],
+        sets: &mut BinSets<B>,
+        out: &mut Bins,
+    ) {
+        let used = self.count;
+        let one_set = prims.len() < ONE_SET_MAX && self.axes.len() == 1;
+        let [even, odd] = sets;
+        for axis in self.axes.clone() {
+            even[axis][..used].fill(B::empty());
+            if !one_set {
+                odd[axis][..used].fill(B::empty());
             }
-            bins.settle(&AxisBins::EMPTY, self.count);
-            return;
         }
-        self.clear(&mut scratch.bins);
-        self.clear(&mut scratch.odd);
-        let (even, odd) = (&mut scratch.bins, &mut scratch.odd);
-        let pairs = prims.chunks_exact(2);
-        let rest = pairs.remainder();
-        if self.axes.len() == 1 {
+        let bin = |b: i32| b as usize & (BINS - 1);
+        if one_set {
+            let axis = self.axes.start;
+            for p in prims {
+                even[axis][bin(self.bins(p)[axis])].add(B::prim(p));
+            }
+        } else if self.axes.len() == 1 {
             // One loop per axis: the bin is then a fixed lane, not a trip through memory.
             let axis = self.axes.start;
-            let (even, odd) = (&mut even.0[axis], &mut odd.0[axis]);
+            let (even, odd) = (&mut even[axis], &mut odd[axis]);
             match axis {
-                0 => self.fill_axis::<0>(prims, even, odd),
-                1 => self.fill_axis::<1>(prims, even, odd),
-                _ => self.fill_axis::<2>(prims, even, odd),
+                0 => self.fill_axis::<0, B>(prims, even, odd),
+                1 => self.fill_axis::<1, B>(prims, even, odd),
+                _ => self.fill_axis::<2, B>(prims, even, odd),
             }
         } else {
+            let pairs = prims.chunks_exact(2);
+            let rest = pairs.remainder();
             for pair in pairs {
                 let (a, b) = (&pair[0], &pair[1]);
                 let (ba, bb) = (self.bins(a), self.bins(b));
+                let (pa, pb) = (B::prim(a), B::prim(b));
                 for axis in 0..3 {
-                    even.0[axis].add(ba[axis] as usize, a);
-                    odd.0[axis].add(bb[axis] as usize, b);
+                    even[axis][bin(ba[axis])].add(pa);
+                    odd[axis][bin(bb[axis])].add(pb);
                 }
             }
             for p in rest {
-                for (bins, &b) in even.0.iter_mut().zip(&self.bins(p)) {
-                    bins.add(b as usize, p);
+                let (bp, pp) = (self.bins(p), B::prim(p));
+                for (axis, bins) in even.iter_mut().enumerate() {
+                    bins[bin(bp[axis])].add(pp);
                 }
             }
-            for axis in 0..3 {
-                even.0[axis].settle(&odd.0[axis], self.count);
+        }
+        for axis in self.axes.clone() {
+            let out = &mut out.0[axis];
+            for b in 0..used {
+                let (first, count) = even[axis][b].settle();
+                (out.boxes[b], out.counts[b]) = if one_set {
+                    (first, count)
+                } else {
+                    let (second, more) = odd[axis][b].settle();
+                    (first.union(second), count + more)
+                };
             }
         }
     }
 
-    /// [`Binning::fill_run`] on axis `AXIS` alone, into `even` (with `odd` as the second set).
-    fn fill_axis<const AXIS: usize>(
+    /// The loop of [`Binning::fill_sets`] over two sets on axis `AXIS` alone: even prims into
+    /// `even`, odd ones into `odd`.
+    #[inline(always)]
+    fn fill_axis<const AXIS: usize, B: BinBox>(
         &self,
         prims: &[Prim],
-        even: &mut AxisBins,
-        odd: &mut AxisBins,
+        even: &mut [B; BINS],
+        odd: &mut [B; BINS],
     ) {
+        let bin = |p: &Prim| self.bins(p)[AXIS] as usize & (BINS - 1);
         let pairs = prims.chunks_exact(2);
         let rest = pairs.remainder();
         for pair in pairs {
             let (a, b) = (&pair[0], &pair[1]);
-            even.add(self.bins(a)[AXIS] as usize, a);
-            odd.add(self.bins(b)[AXIS] as usize, b);
+            even[bin(a)].add(B::prim(a));
+            odd[bin(b)].add(B::prim(b));
         }
         for p in rest {
-            even.add(self.bins(p)[AXIS] as usize, p);
+            even[bin(p)].add(B::prim(p));
         }
-        even.settle(odd, self.count);
     }
 
     /// The cheapest split that leaves both sides non-empty, if any. `parent_area` is the

@@ -89,3 +89,45 @@ proptest! {
         assert_same(&prims)?;
     }
 }
+
+/// The bins of `prims` worked out one prim at a time: each bin's count and the union of its
+/// prims' boxes, on each axis binned.
+fn brute_force(binning: &Binning, prims: &[Prim]) -> Vec<(usize, usize, u32, Aabb)> {
+    let mut bins = Vec::new();
+    for axis in binning.axes() {
+        for b in 0..binning.count() {
+            let inside: Vec<&Prim> = prims
+                .iter()
+                .filter(|p| binning.bins(p)[axis] as usize == b)
+                .collect();
+            let mut union = Aabb::EMPTY;
+            for p in &inside {
+                union.grow(p.lo(), p.hi());
+            }
+            bins.push((axis, b, inside.len() as u32, union));
+        }
+    }
+    bins
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Every prim is counted once, in its own bin, and each bin's box is the union of its prims'
+    /// boxes (compared as values: which of ±0 a bin keeps is the order's business, checked
+    /// above), for runs of one set, of two, and on three axes.
+    #[test]
+    fn each_bin_counts_and_bounds_its_prims(prims in prop_oneof![prims(1..200), prims(4096..4200)]) {
+        let (binning, lanes, _) = both(&prims);
+        for (axis, b, count, union) in brute_force(&binning, &prims) {
+            let bins = &lanes.0[axis];
+            prop_assert_eq!(bins.counts[b], count, "count, axis {} bin {}", axis, b);
+            if count > 0 {
+                let (lo, hi) = (bins.boxes[b].lo.to_array(), bins.boxes[b].hi.to_array());
+                let (ulo, uhi) = (union.lo.to_array(), union.hi.to_array());
+                prop_assert_eq!(&lo[..3], &ulo[..3], "lo, axis {} bin {}", axis, b);
+                prop_assert_eq!(&hi[..3], &uhi[..3], "hi, axis {} bin {}", axis, b);
+            }
+        }
+    }
+}
