@@ -51,7 +51,7 @@ struct PhongShader<'a> {
 impl Shader for PhongShader<'_> {
     #[inline(always)]
     fn shade<L: Lanes8>(&self, fragments: &Fragments<L>, row: &mut [Vec3]) {
-        let x = L::from_array(fragments.x.map(|c| c as f32 + 0.5));
+        let x = fragments.columns() + L::splat(0.5);
         let ray = self
             .view
             .pixel_direction(x, L::splat(fragments.y as f32 + 0.5));

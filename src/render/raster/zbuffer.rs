@@ -236,7 +236,7 @@ fn shade_row<L: Lanes8, S: Shader>(
     shader: &S,
     out: &mut [Vec3],
 ) {
-    let mut packer = Packer::default();
+    let mut packer = Packer::<L>::default();
     let mut x = 0;
     let width = out.len();
     while x < width {
@@ -254,7 +254,7 @@ fn shade_row<L: Lanes8, S: Shader>(
             }
             if whole < run {
                 let rest = run - whole;
-                let full = packer.push_run::<L>(y, x, whole, rest, t.object, at_start, t.per_x);
+                let full = packer.push_run(y, x, whole, rest, t.object, at_start, t.per_x);
                 if let Some(full) = full {
                     shader.shade(&full, out);
                 }
@@ -262,7 +262,7 @@ fn shade_row<L: Lanes8, S: Shader>(
         }
         x += run;
     }
-    if let Some(rest) = packer.take::<L>(y) {
+    if let Some(rest) = packer.take(y) {
         shader.shade(&rest, out);
     }
 }

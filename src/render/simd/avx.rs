@@ -11,7 +11,7 @@
 
 use std::arch::x86_64::{
     __m256, _CMP_GT_OQ, _CMP_LT_OQ, _mm256_add_epi32, _mm256_add_ps, _mm256_and_ps,
-    _mm256_castps_si256, _mm256_castsi256_ps, _mm256_cmp_ps, _mm256_cvtepi32_ps,
+    _mm256_blendv_ps, _mm256_castps_si256, _mm256_castsi256_ps, _mm256_cmp_ps, _mm256_cvtepi32_ps,
     _mm256_cvttps_epi32, _mm256_div_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps,
     _mm256_mul_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_setzero_ps, _mm256_slli_epi32,
     _mm256_sqrt_ps, _mm256_srai_epi32, _mm256_sub_epi32, _mm256_sub_ps, _mm256_xor_ps,
@@ -102,6 +102,11 @@ impl Lanes for Avx {
     #[inline(always)]
     fn keep(mask: Avx, value: Avx) -> Avx {
         mask & value
+    }
+
+    #[inline(always)]
+    fn select(mask: Avx, yes: Avx, no: Avx) -> Avx {
+        avx!(_mm256_blendv_ps(no.0, yes.0, mask.0))
     }
 
     #[inline(always)]

@@ -42,6 +42,8 @@ pub trait Lanes:
     fn lt(self, other: Self) -> Self::Mask;
     /// `value` where `mask` holds, else 0.
     fn keep(mask: Self::Mask, value: Self) -> Self;
+    /// `yes` where `mask` holds, else `no`, bit for bit.
+    fn select(mask: Self::Mask, yes: Self, no: Self) -> Self;
     /// −`value` where `mask` holds, else `value`.
     fn negate_where(mask: Self::Mask, value: Self) -> Self;
     /// Whether `mask` holds in any lane.
@@ -97,6 +99,11 @@ impl Lanes for f32 {
     #[inline(always)]
     fn keep(mask: bool, value: f32) -> f32 {
         if mask { value } else { 0.0 }
+    }
+
+    #[inline(always)]
+    fn select(mask: bool, yes: f32, no: f32) -> f32 {
+        if mask { yes } else { no }
     }
 
     #[inline(always)]
@@ -161,6 +168,11 @@ impl Lanes for F32x8 {
     #[inline(always)]
     fn keep(mask: F32x8, value: F32x8) -> F32x8 {
         mask & value
+    }
+
+    #[inline(always)]
+    fn select(mask: F32x8, yes: F32x8, no: F32x8) -> F32x8 {
+        mask.blend(yes, no)
     }
 
     #[inline(always)]
