@@ -36,6 +36,17 @@ pub(crate) fn with_avx2<R>(work: impl FnOnce() -> R) -> R {
 pub(crate) static BASELINE_ONLY: std::sync::atomic::AtomicBool =
     std::sync::atomic::AtomicBool::new(false);
 
+/// Held by tests that set [`BASELINE_ONLY`] or [`AVX2_AT_MOST`], and by tests that check
+/// which build ran, so that they do not see each other's settings.
+#[cfg(test)]
+pub(crate) static BUILD_CHOICE: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// Set by tests that compare the AVX-512 lanes with the AVX2 ones: AVX-512 is then not used
+/// anywhere in the process (which changes no result either).
+#[cfg(test)]
+pub(crate) static AVX2_AT_MOST: std::sync::atomic::AtomicBool =
+    std::sync::atomic::AtomicBool::new(false);
+
 /// Whether this CPU has what [`avx2_work`] is compiled for: AVX2, BMI1/2 and LZCNT (detected
 /// once, then cached flags; false in a test that asked for the baseline build).
 #[cfg(target_arch = "x86_64")]
@@ -49,6 +60,22 @@ pub(crate) fn has_avx2_bmi() -> bool {
         && is_x86_feature_detected!("bmi1")
         && is_x86_feature_detected!("bmi2")
         && is_x86_feature_detected!("lzcnt")
+}
+
+/// Whether this CPU has, beside [`has_avx2_bmi`]'s, what the widest lanes of
+/// [`run_on_best_lanes`](super::simd::run_on_best_lanes) are compiled for: AVX-512 F, DQ and VL
+/// (false in a test that asked for AVX2 at most, or for the baseline build).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub(crate) fn has_avx512() -> bool {
+    #[cfg(test)]
+    if AVX2_AT_MOST.load(std::sync::atomic::Ordering::Relaxed) {
+        return false;
+    }
+    has_avx2_bmi()
+        && is_x86_feature_detected!("avx512f")
+        && is_x86_feature_detected!("avx512dq")
+        && is_x86_feature_detected!("avx512vl")
 }
 
 /// `work()`, compiled for AVX2, BMI1/2 and LZCNT.

@@ -119,4 +119,25 @@ impl ObjectMaterials {
             MaterialLanes::gather(objects.map(|o| &self.one[o as usize]))
         }
     }
+
+    /// The materials of two batches of lanes, `low`'s objects then `high`'s, in sixteen lanes.
+    #[inline(always)]
+    pub fn of_pair<L: Lanes8>(
+        &self,
+        low: &[u32; WIDTH],
+        high: &[u32; WIDTH],
+    ) -> MaterialLanes<L::Pair> {
+        let object = low[0];
+        if low.iter().chain(high).all(|&o| o == object) {
+            return self.splat(object as usize);
+        }
+        let (low, high) = (self.of_lanes::<L>(low), self.of_lanes::<L>(high));
+        MaterialLanes {
+            color: V3::pair(low.color, high.color),
+            diffuse: L::pair(low.diffuse, high.diffuse),
+            specular: L::pair(low.specular, high.specular),
+            shininess: L::pair(low.shininess, high.shininess),
+            specular_cutoff: L::pair(low.specular_cutoff, high.specular_cutoff),
+        }
+    }
 }

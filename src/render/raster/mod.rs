@@ -20,6 +20,8 @@ mod zbuffer;
 pub(crate) use coverage::raster_coverage;
 pub(crate) use gouraud::render_gouraud;
 pub(crate) use phong::render_phong;
+#[cfg(test)]
+use phong::render_phong_unpaired;
 pub(crate) use setup::RasterScratch;
 #[cfg(test)]
 pub(crate) use zbuffer::coverage_counts;

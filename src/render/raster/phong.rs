@@ -8,10 +8,10 @@ use super::shader::Shader;
 use super::varying::PerVertex;
 use super::zbuffer::draw;
 use crate::render::camera::View;
-use crate::render::materials::ObjectMaterials;
+use crate::render::materials::{MaterialLanes, ObjectMaterials};
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::shading::Lighting;
-use crate::render::simd::{Lanes8, V3};
+use crate::render::simd::{Lanes, Lanes8, V3};
 use crate::world::World;
 
 /// Renders `world` through `view` into `out` (`view.width`×`view.height` pixels).
@@ -22,21 +22,50 @@ pub fn render_phong(
     progress: &Progress,
     out: &mut [Vec3],
 ) -> Result<(), Cancelled> {
-    let shader = PhongShader {
-        view,
-        lighting: Lighting::new(world),
-        materials: ObjectMaterials::new(world),
-    };
-    // The varying is the vertex normal.
+    let shader = PhongShader::new(world, view);
+    draw_normals(scratch, world, view, progress, &shader, out)
+}
+
+/// Draws with `shader`, the vertex normals as the varying.
+fn draw_normals(
+    scratch: &mut RasterScratch,
+    world: &World,
+    view: &View,
+    progress: &Progress,
+    shader: &impl Shader,
+    out: &mut [Vec3],
+) -> Result<(), Cancelled> {
+    let normals = &mut PerVertex::normals(world);
     draw(
         &mut scratch.geometry,
         world,
         view,
         progress,
-        &mut PerVertex::normals(world),
-        &shader,
+        normals,
+        shader,
         out,
     )
+}
+
+/// [`render_phong`] lighting every batch of eight pixels alone, never two at once: what the
+/// pairs must give, bit for bit.
+#[cfg(test)]
+pub(super) fn render_phong_unpaired(
+    scratch: &mut RasterScratch,
+    world: &World,
+    view: &View,
+    progress: &Progress,
+    out: &mut [Vec3],
+) -> Result<(), Cancelled> {
+    /// `S`, one batch at a time.
+    struct OneAtATime<S>(S);
+    impl<S: Shader> Shader for OneAtATime<S> {
+        fn shade<L: Lanes8>(&self, fragments: &Fragments<L>, row: &mut [Vec3]) {
+            self.0.shade(fragments, row);
+        }
+    }
+    let shader = OneAtATime(PhongShader::new(world, view));
+    draw_normals(scratch, world, view, progress, &shader, out)
 }
 
 /// Lights every pixel with its interpolated normal. The surface point is found on the pixel's
@@ -51,17 +80,62 @@ struct PhongShader<'a> {
 impl Shader for PhongShader<'_> {
     #[inline(always)]
     fn shade<L: Lanes8>(&self, fragments: &Fragments<L>, row: &mut [Vec3]) {
-        let x = fragments.columns() + L::splat(0.5);
+        let color = self.light(
+            fragments.columns(),
+            fragments.y,
+            fragments.depth,
+            fragments.varying,
+            &self.materials.of_lanes(&fragments.object),
+        );
+        fragments.write(color, row);
+    }
+
+    const SHADES_TWO: bool = true;
+
+    #[inline(always)]
+    fn shade_two<L: Lanes8>(&self, low: &Fragments<L>, high: &Fragments<L>, row: &mut [Vec3]) {
+        debug_assert_eq!(low.y, high.y);
+        let color = self.light(
+            L::pair(low.columns(), high.columns()),
+            low.y,
+            L::pair(low.depth, high.depth),
+            V3::pair(low.varying, high.varying),
+            &self.materials.of_pair::<L>(&low.object, &high.object),
+        );
+        let (low_color, high_color) = V3::halves(color);
+        low.write(low_color, row);
+        high.write(high_color, row);
+    }
+}
+
+impl<'a> PhongShader<'a> {
+    fn new(world: &'a World, view: &'a View) -> PhongShader<'a> {
+        PhongShader {
+            view,
+            lighting: Lighting::new(world),
+            materials: ObjectMaterials::new(world),
+        }
+    }
+
+    /// The colours of pixels in columns `x` of row `y` whose surface lies at depth `depth` on
+    /// their rays, with interpolated normals `varying` and materials `material`: each lane as
+    /// it would be alone.
+    #[inline(always)]
+    fn light<P: Lanes>(
+        &self,
+        x: P,
+        y: u32,
+        depth: P,
+        varying: V3<P>,
+        material: &MaterialLanes<P>,
+    ) -> V3<P> {
         let ray = self
             .view
-            .pixel_direction(x, L::splat(fragments.y as f32 + 0.5));
-        let p = V3::splat(self.view.eye) + ray * fragments.depth;
+            .pixel_direction(x + P::splat(0.5), P::splat(y as f32 + 0.5));
+        let p = V3::splat(self.view.eye) + ray * depth;
         let v = (-ray).normalize_or_zero();
-        let n = fragments.varying.normalize_or_zero();
-        let material = self.materials.of_lanes(&fragments.object);
-        let color = self
-            .lighting
-            .shade_lanes(p, n, v, &material, |_, _, facing| facing);
-        fragments.write(color, row);
+        let n = varying.normalize_or_zero();
+        self.lighting
+            .shade_lanes(p, n, v, material, |_, _, facing| facing)
     }
 }

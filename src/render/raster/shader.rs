@@ -12,6 +12,17 @@ use crate::render::simd::Lanes8;
 pub trait Shader: Sync {
     /// Writes the colours of `fragments`' pixels into `row`, the row's pixels.
     fn shade<L: Lanes8>(&self, fragments: &Fragments<L>, row: &mut [Vec3]);
+
+    /// Whether [`Shader::shade_two`] does more than shade each batch: the Z-buffer then hands
+    /// the batches of a row over two at a time.
+    const SHADES_TWO: bool = false;
+
+    /// Writes the colours of two batches of one row: the same colours as [`Shader::shade`]
+    /// gives each, and a shader with much work per pixel may do both in sixteen lanes.
+    fn shade_two<L: Lanes8>(&self, low: &Fragments<L>, high: &Fragments<L>, row: &mut [Vec3]) {
+        self.shade(low, row);
+        self.shade(high, row);
+    }
 }
 
 /// The interpolated varying is the colour (Gouraud shading: lit vertex colours).

@@ -12,7 +12,7 @@ use super::setup::{Geometry, RasterScratch};
 use super::shader::{Shader, VaryingColor};
 use super::varying::PerVertex;
 use super::zbuffer::{coverage_counts, draw};
-use super::{render_gouraud, render_phong};
+use super::{render_gouraud, render_phong, render_phong_unpaired};
 use crate::mesh::{FaceList, with_normals};
 use crate::render::simd::{Lanes8, V3};
 use crate::render::{Algorithm, Frame, Progress, RenderOptions, Renderer, View};
@@ -346,11 +346,13 @@ impl Shader for WriteDepth {
 #[test]
 fn setup_compiled_for_avx2_draws_the_bits_of_the_baseline_build() {
     // Triangle setup, binning and the planes of the varying run compiled for AVX2 where the CPU
-    // has it, small triangles are scanned and the rows are shaded on AVX registers: the images must be those of the
-    // baseline build, bit for bit, including triangles clipped at the near plane and the guard
-    // band. (On a CPU without AVX2 both are the baseline.)
-    use crate::render::cpu::BASELINE_ONLY;
+    // has it, small triangles are scanned and the rows are shaded on AVX registers, and where
+    // it has AVX-512 too, Phong lights pairs of batches in 512-bit registers: the images must be
+    // those of the baseline build, bit for bit, including triangles clipped at the near plane
+    // and the guard band. (On a CPU without AVX2 all are the baseline.)
+    use crate::render::cpu::{AVX2_AT_MOST, BASELINE_ONLY, BUILD_CHOICE};
     use std::sync::atomic::Ordering;
+    let _choice = BUILD_CHOICE.lock().unwrap_or_else(|e| e.into_inner());
     let mut scenes = vec![default_scene()];
     let mut close = default_scene();
     close.camera.position = Vec3::new(0.3, 0.4, 0.9);
@@ -385,18 +387,88 @@ object = [
             out
         };
         for algorithm in [Algorithm::Gouraud, Algorithm::Phong] {
-            let fast = draw(algorithm);
+            let fastest = draw(algorithm);
+            AVX2_AT_MOST.store(true, Ordering::Relaxed);
+            let avx2 = draw(algorithm);
+            AVX2_AT_MOST.store(false, Ordering::Relaxed);
             BASELINE_ONLY.store(true, Ordering::Relaxed);
             let baseline = draw(algorithm);
             BASELINE_ONLY.store(false, Ordering::Relaxed);
-            let differing = fast
-                .iter()
-                .zip(&baseline)
-                .filter(|(a, b)| a.to_array().map(f32::to_bits) != b.to_array().map(f32::to_bits))
-                .count();
-            assert_eq!(differing, 0, "{algorithm}: {differing} pixels differ");
+            for (build, fast) in [("widest", &fastest), ("AVX2", &avx2)] {
+                let differing = fast
+                    .iter()
+                    .zip(&baseline)
+                    .filter(|(a, b)| {
+                        a.to_array().map(f32::to_bits) != b.to_array().map(f32::to_bits)
+                    })
+                    .count();
+                assert_eq!(
+                    differing, 0,
+                    "{algorithm}, {build}: {differing} pixels differ"
+                );
+            }
+            let fast = fastest;
             let covered = fast.iter().filter(|c| **c != world.background).count();
             assert!(covered > 2000, "the scene covers the view ({covered})");
         }
+    }
+}
+
+/// A Z-buffer renderer's signature.
+type Render = fn(
+    &mut RasterScratch,
+    &World,
+    &View,
+    &Progress,
+    &mut [Vec3],
+) -> Result<(), crate::render::progress::Cancelled>;
+
+#[test]
+fn phong_lights_pairs_of_batches_as_it_lights_each_alone() {
+    // Phong lights the batches of eight pixels of a row two at a time (in one 512-bit register
+    // where the CPU has AVX-512, else side by side): each pixel must come out as the batch
+    // alone gives it. Dense spheres, so that most batches are packed from short runs of
+    // several triangles, and a close flat face whose long spans make whole batches.
+    use crate::render::cpu::{AVX2_AT_MOST, BASELINE_ONLY, BUILD_CHOICE};
+    use std::sync::atomic::Ordering;
+    let _choice = BUILD_CHOICE.lock().unwrap_or_else(|e| e.into_inner());
+    let scene = scene(
+        r#"
+camera = { position = [0.4, 0.3, 2.6], target = [0.0, 0.0, 0.0], fov = 45.0 }
+light = [{ position = [3.0, 4.0, 5.0] }, { position = [-2.0, 1.0, 3.0], intensity = 0.5 }]
+object = [
+    { type = "icosahedron", radius = 1.0, subdivisions = 4, material = { color = [0.9, 0.5, 0.2], specular = 0.8, shininess = 20.0 } },
+    { type = "icosahedron", center = [0.5, 0.2, -1.0], radius = 0.8, subdivisions = 3 },
+    { type = "box", center = [0.0, 0.0, -2.0], size = [6.0, 4.0, 0.1], material = { color = [0.3, 0.6, 0.9] } },
+]
+"#,
+    );
+    let world = world(&scene);
+    let view = View::new(&scene.camera, 211, 97);
+    let progress = Progress::new();
+    let image = |render: Render| {
+        let mut out = vec![Vec3::NAN; (view.width * view.height) as usize];
+        render(
+            &mut RasterScratch::default(),
+            &world,
+            &view,
+            &progress,
+            &mut out,
+        )
+        .expect("render");
+        out.iter()
+            .map(|c| c.to_array().map(f32::to_bits))
+            .collect::<Vec<_>>()
+    };
+    for (build, flag) in [
+        ("widest", None),
+        ("AVX2", Some(&AVX2_AT_MOST)),
+        ("baseline", Some(&BASELINE_ONLY)),
+    ] {
+        flag.inspect(|f| f.store(true, Ordering::Relaxed));
+        let (paired, alone) = (image(render_phong), image(render_phong_unpaired));
+        flag.inspect(|f| f.store(false, Ordering::Relaxed));
+        let differing = paired.iter().zip(&alone).filter(|(a, b)| a != b).count();
+        assert_eq!(differing, 0, "{build}: {differing} pixels differ");
     }
 }

@@ -226,7 +226,7 @@ fn run_length(ids: &[u32], row: usize) -> usize {
 /// Shades row `y`, whose pixels were drawn by the triangle whose interpolants are
 /// `planes[id]` for each of `ids` (0 = none; [`WIDTH`] ids of the next row follow the row's):
 /// runs of one triangle go to `shader` as whole spans of eight, the rest of each run packed in
-/// lanes.
+/// lanes; a shader that [shades two batches at once](Shader::SHADES_TWO) gets them in pairs.
 #[inline(always)]
 fn shade_row<L: Lanes8, S: Shader>(
     planes: &[Planes],
@@ -237,6 +237,8 @@ fn shade_row<L: Lanes8, S: Shader>(
     out: &mut [Vec3],
 ) {
     let mut packer = Packer::<L>::default();
+    // A batch waiting for a second one (pixels are written once each, in any order).
+    let mut waiting = None;
     let mut x = 0;
     let width = out.len();
     while x < width {
@@ -249,21 +251,42 @@ fn shade_row<L: Lanes8, S: Shader>(
             let at_start = t.at(x as i32, y as i32);
             let whole = run - run % WIDTH;
             for k in (0..whole).step_by(WIDTH) {
-                let span = Fragments::<L>::span(y, x, k, t.object, at_start, t.per_x);
-                shader.shade(&span, out);
+                let span = Fragments::span(y, x, k, t.object, at_start, t.per_x);
+                shade_batch(shader, &mut waiting, span, out);
             }
             if whole < run {
                 let rest = run - whole;
                 let full = packer.push_run(y, x, whole, rest, t.object, at_start, t.per_x);
                 if let Some(full) = full {
-                    shader.shade(&full, out);
+                    shade_batch(shader, &mut waiting, full, out);
                 }
             }
         }
         x += run;
     }
     if let Some(rest) = packer.take(y) {
-        shader.shade(&rest, out);
+        shade_batch(shader, &mut waiting, rest, out);
+    }
+    if let Some(last) = waiting {
+        shader.shade(&last, out);
+    }
+}
+
+/// Hands `batch` to `shader`: at once, or, where it [shades two](Shader::SHADES_TWO), with the
+/// batch `waiting` if there is one, else as the one waiting.
+#[inline(always)]
+fn shade_batch<L: Lanes8, S: Shader>(
+    shader: &S,
+    waiting: &mut Option<Fragments<L>>,
+    batch: Fragments<L>,
+    out: &mut [Vec3],
+) {
+    if !S::SHADES_TWO {
+        shader.shade(&batch, out);
+    } else if let Some(first) = waiting.take() {
+        shader.shade_two(&first, &batch, out);
+    } else {
+        *waiting = Some(batch);
     }
 }
 

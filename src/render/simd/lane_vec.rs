@@ -82,6 +82,24 @@ impl V3<f32> {
 }
 
 impl<L: Lanes8> V3<L> {
+    /// `low`'s lanes, then `high`'s.
+    #[inline(always)]
+    pub fn pair(low: V3<L>, high: V3<L>) -> V3<L::Pair> {
+        V3::new(
+            L::pair(low.x, high.x),
+            L::pair(low.y, high.y),
+            L::pair(low.z, high.z),
+        )
+    }
+
+    /// The low eight lanes and the high eight.
+    #[inline(always)]
+    pub fn halves(pair: V3<L::Pair>) -> (V3<L>, V3<L>) {
+        let ((x0, x1), (y0, y1), (z0, z1)) =
+            (L::halves(pair.x), L::halves(pair.y), L::halves(pair.z));
+        (V3::new(x0, y0, z0), V3::new(x1, y1, z1))
+    }
+
     /// Lane k holds `vectors[k]`; lanes past the end repeat the last vector (`vectors` holds 1
     /// to [`WIDTH`] of them).
     ///

@@ -10,6 +10,8 @@ use std::ops::{Add, BitAnd, Div, Mul, Neg, Sub};
 
 use wide::{CmpGt, CmpLt, i32x8};
 
+use super::twice::Twice;
+
 /// Eight `f32` lanes.
 pub type F32x8 = wide::f32x8;
 
@@ -210,6 +212,14 @@ pub trait Lanes8: Lanes {
     fn from_array(values: [f32; WIDTH]) -> Self;
     /// The lanes in order.
     fn to_array(self) -> [f32; WIDTH];
+
+    /// Sixteen lanes: two batches of eight worked on at once. One AVX-512 register where the
+    /// CPU has it, else the two halves side by side ([`Twice`]).
+    type Pair: Lanes;
+    /// `low`'s lanes, then `high`'s.
+    fn pair(low: Self, high: Self) -> Self::Pair;
+    /// The low eight lanes and the high eight.
+    fn halves(pair: Self::Pair) -> (Self, Self);
 }
 
 impl Lanes8 for F32x8 {
@@ -221,6 +231,18 @@ impl Lanes8 for F32x8 {
     #[inline(always)]
     fn to_array(self) -> [f32; WIDTH] {
         F32x8::to_array(self)
+    }
+
+    type Pair = Twice<F32x8>;
+
+    #[inline(always)]
+    fn pair(low: F32x8, high: F32x8) -> Twice<F32x8> {
+        Twice(low, high)
+    }
+
+    #[inline(always)]
+    fn halves(pair: Twice<F32x8>) -> (F32x8, F32x8) {
+        (pair.0, pair.1)
     }
 }
 

@@ -3,9 +3,12 @@
 
 #[cfg(target_arch = "x86_64")]
 mod avx;
+#[cfg(target_arch = "x86_64")]
+mod avx512;
 mod lane_vec;
 mod lanes;
 mod pow;
+mod twice;
 
 pub(crate) use lane_vec::V3;
 pub(crate) use lanes::{F32x8, Lanes, Lanes8, LanesJob, WIDTH, load};
