@@ -205,7 +205,6 @@ fn median_total(runs: &[RenderStats]) -> Duration {
     Duration::from_secs_f64(median_ms / 1e3)
 }
 
-/// One render by `renderer`, kept from render to render, into `frame`.
 /// How long a kept renderer draws untimed frames before it is timed (at least one frame).
 ///
 /// A live preview has been drawing for a while when a key is pressed; a fresh process has not.
@@ -231,6 +230,7 @@ fn warm_up(
     }
 }
 
+/// One render by `renderer`, kept from render to render, into `frame`.
 fn time_kept_render(
     renderer: &mut Renderer,
     world: &Arc<World>,
