@@ -37,32 +37,18 @@ fn lane_numbers<L: Lanes8>() -> L {
 }
 
 impl<L: Lanes8> Fragments<L> {
-    /// Pixels `run_start + k .. run_start + k + WIDTH` of row `y`, all drawn by one triangle of
-    /// `object` whose interpolants (varying·1/w, 1/w) are `at_start` at the run's first pixel and
-    /// change by `per_x` per pixel.
+    /// Pixels `k .. k + WIDTH` of `run`, in row `y`.
     #[inline(always)]
-    pub fn span(
-        y: u32,
-        run_start: usize,
-        k: usize,
-        object: u32,
-        at_start: Vec4,
-        per_x: Vec4,
-    ) -> Fragments<L> {
+    pub fn span(y: u32, run: &Run, k: usize) -> Fragments<L> {
         let steps = L::splat(k as f32) + lane_numbers();
-        let plane = |at: f32, per: f32| L::splat(at) + L::splat(per) * steps;
-        let first = (run_start + k) as u32;
+        let plane = |c: usize| L::splat(run.at_start[c]) + L::splat(run.per_x[c]) * steps;
+        let first = (run.start + k) as u32;
         Fragments::from_interpolants(
             y,
             WIDTH,
             std::array::from_fn(|lane| first + lane as u32),
-            [object; WIDTH],
-            [
-                plane(at_start.x, per_x.x),
-                plane(at_start.y, per_x.y),
-                plane(at_start.z, per_x.z),
-                plane(at_start.w, per_x.w),
-            ],
+            [run.object; WIDTH],
+            [plane(0), plane(1), plane(2), plane(3)],
         )
     }
 
@@ -110,6 +96,20 @@ impl<L: Lanes8> Fragments<L> {
     }
 }
 
+/// A run of pixels of one row drawn by one triangle: pixel k of it (column `start + k`) has the
+/// interpolants (varying·1/w, 1/w) `at_start + per_x·k`, however it is batched.
+#[derive(Debug, Clone, Copy)]
+pub struct Run {
+    /// Column of the run's first pixel.
+    pub start: usize,
+    /// Object index in the world of the triangle.
+    pub object: u32,
+    /// The interpolants at the run's first pixel.
+    pub at_start: Vec4,
+    /// Their change per pixel.
+    pub per_x: Vec4,
+}
+
 /// 2^23: the f32 from which the integers are one apart.
 const TWO_TO_23: f32 = 8_388_608.0;
 
@@ -148,35 +148,21 @@ impl<L: Lanes8> Default for Packer<L> {
 }
 
 impl<L: Lanes8> Packer<L> {
-    /// Adds the pixels `first..first + len` (`len` 1..=[`WIDTH`]) of a run of one triangle of
-    /// `object` that starts in column `run_start` of row `y`, whose interpolants are `at_start`
-    /// at the run's first pixel and change by `per_x` per pixel: pixel k gets
-    /// `at_start + per_x·k`, as in [`Fragments::span`]. Returns the first eight fragments once
-    /// there are eight.
+    /// Adds pixels `first..first + len` (`len` 1..=[`WIDTH`]) of `run`, in row `y`, computed as
+    /// [`Fragments::span`] computes them. Returns the first eight fragments once there are
+    /// eight.
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
     pub fn push_run(
         &mut self,
         y: u32,
-        run_start: usize,
+        run: &Run,
         first: usize,
         len: usize,
-        object: u32,
-        at_start: Vec4,
-        per_x: Vec4,
     ) -> Option<Fragments<L>> {
         debug_assert!((1..=WIDTH).contains(&len));
         let filled = self.count;
         // Lane `filled + j` takes pixel `first + j`; the lanes past the run repeat its last pixel.
-        self.fill_from(
-            filled as isize,
-            run_start,
-            first,
-            len,
-            object,
-            at_start,
-            per_x,
-        );
+        self.fill_from(filled as isize, run, first, len);
         self.count = filled + len;
         if self.count < WIDTH {
             return None;
@@ -185,46 +171,28 @@ impl<L: Lanes8> Packer<L> {
         self.count -= WIDTH;
         if self.count > 0 {
             // The run's pixels past the eighth lane start the next batch.
-            self.fill_from(
-                filled as isize - WIDTH as isize,
-                run_start,
-                first,
-                len,
-                object,
-                at_start,
-                per_x,
-            );
+            self.fill_from(filled as isize - WIDTH as isize, run, first, len);
         }
         Some(full)
     }
 
-    /// Puts pixel `first + j` of the run into lane `lane + j` for every lane from `lane` on
+    /// Puts pixel `first + j` of `run` into lane `lane + j` for every lane from `lane` on
     /// (`lane` may be negative: the run's first pixels went into the last batch), the lanes past
-    /// the run's end taking its last pixel. The pixel's step from the run's start, `first + j`,
-    /// is an exact integer in f32, so each lane computes `at_start + per_x·k` as
+    /// pixel `first + len − 1` taking that pixel. The pixel's step from the run's start, `first
+    /// + j`, is an exact integer in f32, so each lane computes `at_start + per_x·k` as
     /// [`Fragments::span`] does.
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn fill_from(
-        &mut self,
-        lane: isize,
-        run_start: usize,
-        first: usize,
-        len: usize,
-        object: u32,
-        at_start: Vec4,
-        per_x: Vec4,
-    ) {
+    fn fill_from(&mut self, lane: isize, run: &Run, first: usize, len: usize) {
         let lanes = lane_numbers::<L>();
         let last = L::splat((lane + len as isize - 1) as f32);
         let steps = lanes.min(last) + L::splat((first as isize - lane) as f32);
         let kept = lanes.lt(L::splat(lane as f32));
         for (c, values) in self.values.iter_mut().enumerate() {
-            let fresh = L::splat(at_start[c]) + L::splat(per_x[c]) * steps;
+            let fresh = L::splat(run.at_start[c]) + L::splat(run.per_x[c]) * steps;
             *values = L::select(kept, *values, fresh);
         }
-        self.x = L::select(kept, self.x, L::splat(run_start as f32) + steps);
-        self.object = L::select(kept, self.object, L::splat(object as f32));
+        self.x = L::select(kept, self.x, L::splat(run.start as f32) + steps);
+        self.object = L::select(kept, self.object, L::splat(run.object as f32));
     }
 
     /// The fragments collected so far, as lanes of row `y`; `None` when there are none. Empties
@@ -258,7 +226,7 @@ impl<L: Lanes8> Packer<L> {
 mod tests {
     use glam::Vec4;
 
-    use super::{Fragments, Packer};
+    use super::{Fragments, Packer, Run};
     use crate::render::simd::{F32x8, WIDTH};
 
     #[test]
@@ -267,11 +235,17 @@ mod tests {
         // with other short runs: the image must not depend on how pixels were batched.
         let at_start = Vec4::new(0.3, -0.7, 0.11, 0.25);
         let per_x = Vec4::new(1.0e-3, -3.0e-4, 7.0e-5, -1.0e-5);
-        let span = Fragments::<F32x8>::span(5, 100, 8, 2, at_start, per_x);
+        let run = |start, object| Run {
+            start,
+            object,
+            at_start,
+            per_x,
+        };
+        let span = Fragments::<F32x8>::span(5, &run(100, 2), 8);
         let mut packer = Packer::<F32x8>::default();
-        assert!(packer.push_run(5, 100, 8, 3, 2, at_start, per_x).is_none());
+        assert!(packer.push_run(5, &run(100, 2), 8, 3).is_none());
         let packed = packer
-            .push_run(5, 100, 11, 5, 2, at_start, per_x)
+            .push_run(5, &run(100, 2), 11, 5)
             .expect("eight fragments");
         assert_eq!(span.x, packed.x);
         assert_eq!((span.count, packed.count), (WIDTH, WIDTH));
@@ -291,10 +265,8 @@ mod tests {
         }
         // Runs past the eighth lane wait for the next batch; a partly filled packer repeats
         // its last fragment and says how many are real.
-        packer.push_run(7, 40, 0, 6, 1, at_start, per_x);
-        let full = packer
-            .push_run(7, 50, 2, 4, 3, at_start, per_x)
-            .expect("ten");
+        packer.push_run(7, &run(40, 1), 0, 6);
+        let full = packer.push_run(7, &run(50, 3), 2, 4).expect("ten");
         assert_eq!(full.x, [40, 41, 42, 43, 44, 45, 52, 53]);
         assert_eq!(full.object, [1, 1, 1, 1, 1, 1, 3, 3]);
         let rest = packer.take(7).expect("two fragments");

@@ -17,7 +17,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::fragments::{Fragments, Packer};
+use super::fragments::{Fragments, Packer, Run};
 #[cfg(target_arch = "x86_64")]
 use super::scan_avx2::{Avx2, Band};
 use super::screen_triangle::{Planes, ScreenTriangle};
@@ -243,26 +243,29 @@ fn shade_row<L: Lanes8, S: Shader>(
     let width = out.len();
     while x < width {
         let id = ids[x];
-        let run = run_length(&ids[x..], width - x);
+        let length = run_length(&ids[x..], width - x);
         if id == 0 {
-            fill(&mut out[x..x + run], background);
+            fill(&mut out[x..x + length], background);
         } else {
             let t = &planes[id as usize];
-            let at_start = t.at(x as i32, y as i32);
-            let whole = run - run % WIDTH;
+            let pixels = Run {
+                start: x,
+                object: t.object,
+                at_start: t.at(x as i32, y as i32),
+                per_x: t.per_x,
+            };
+            let whole = length - length % WIDTH;
             for k in (0..whole).step_by(WIDTH) {
-                let span = Fragments::span(y, x, k, t.object, at_start, t.per_x);
+                let span = Fragments::span(y, &pixels, k);
                 shade_batch(shader, &mut waiting, span, out);
             }
-            if whole < run {
-                let rest = run - whole;
-                let full = packer.push_run(y, x, whole, rest, t.object, at_start, t.per_x);
-                if let Some(full) = full {
-                    shade_batch(shader, &mut waiting, full, out);
-                }
+            if whole < length
+                && let Some(full) = packer.push_run(y, &pixels, whole, length - whole)
+            {
+                shade_batch(shader, &mut waiting, full, out);
             }
         }
-        x += run;
+        x += length;
     }
     if let Some(rest) = packer.take(y) {
         shade_batch(shader, &mut waiting, rest, out);
