@@ -109,6 +109,7 @@ impl Shader for PhongShader<'_> {
 }
 
 impl<'a> PhongShader<'a> {
+    /// Lights `world`'s materials with its lights, seen through `view`.
     fn new(world: &'a World, view: &'a View) -> PhongShader<'a> {
         PhongShader {
             view,
