@@ -66,6 +66,12 @@ impl ProjectedVertices {
         self.vertices[i]
     }
 
+    /// Hints that vertex `i` is read soon (see [`prefetch`](crate::render::prefetch)).
+    #[inline(always)]
+    pub fn prefetch(&self, i: usize) {
+        crate::render::prefetch::ahead_in(&self.vertices, i);
+    }
+
     /// Makes room for `len` vertices; the values are overwritten by [`project`].
     pub fn resize(&mut self, len: usize) {
         self.vertices.resize(len, i32x4::default());
