@@ -25,10 +25,10 @@ const SETUP_CHUNK: usize = 4096;
 /// test, when the vertex stage ran on several threads. A thread then reads corners another one
 /// projected, and where the two cores share no cache each such read waits for the other core
 /// (a cache line's round trip took 0.4 µs on the 2-vCPU VM in such spells, 0.09 µs otherwise).
-/// Bunny at 160×96, Phong, 2 threads, kept renderer, median of 300 frames, alternating with the
-/// build before: in the far spells 0.733 → 0.635 ms (median of 19 samples), in the near ones
-/// 0.482 → 0.473 ms (97 samples). On 1 thread the hints only cost (0.85 → 0.88 ms), so they
-/// are not given there.
+/// Bunny at 160×96, 2 threads, kept renderer, median of 300 frames, alternating with the build
+/// before: in the far spells Phong 0.716 → 0.629 ms and Gouraud 0.740 → 0.661 ms (medians of 14
+/// samples), in the near ones 0.479 → 0.482 and 0.501 → 0.499 ms (124 samples). On 1 thread the
+/// hints only cost (0.85 → 0.88 ms), so they are not given there.
 const PREFETCH_AHEAD: usize = 64;
 /// Pixels a band of rows holds at most, about: its depth and triangle ids (8 bytes a pixel, a
 /// megabyte in all) then stay in about a core's L2 cache while it is drawn, and fewer
