@@ -55,7 +55,7 @@ pub fn open_regular(path: &Path) -> std::io::Result<File> {
 }
 
 /// The refusal of a file of `size` bytes above `cap`.
-fn too_large(size: u64, cap: u64, what: &str) -> Error {
+pub fn too_large(size: u64, cap: u64, what: &str) -> Error {
     Error::new(
         ErrorKind::InvalidData,
         format!(

@@ -32,6 +32,7 @@ pub mod bench;
 pub mod export;
 pub mod input_file;
 pub mod mesh;
+pub mod model_folder;
 pub mod model_scene;
 pub mod render;
 pub mod scene;

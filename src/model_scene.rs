@@ -28,18 +28,30 @@ pub fn is_model_path(path: &Path) -> bool {
 /// A model file that cannot be shown.
 #[derive(Debug, thiserror::Error)]
 pub enum ModelSceneError {
-    /// The file could not be read as a model (the error names it).
-    #[error(transparent)]
-    Load(#[from] MeshFileError),
+    /// The file could not be read as a model.
+    #[error("{}", load_message(path, error))]
+    Load { path: PathBuf, error: MeshFileError },
     /// The file holds nothing to draw.
     #[error("{}: the model has no triangles to show", path.display())]
     Empty { path: PathBuf },
 }
 
+/// The message of a model that could not be loaded, naming the file once (an OBJ error already
+/// names it, with the line).
+fn load_message(path: &Path, error: &MeshFileError) -> String {
+    match error {
+        MeshFileError::Obj(_) => error.to_string(),
+        MeshFileError::Gltf(_) => format!("{}: {error}", path.display()),
+    }
+}
+
 /// The scene showing the model at `path`, with its mesh path written as the file's name: the
 /// scene's folder is the model's folder.
 pub fn scene_for_model(path: &Path) -> Result<Scene, ModelSceneError> {
-    let model = MeshFile::load(path)?;
+    let model = MeshFile::load(path).map_err(|error| ModelSceneError::Load {
+        path: path.to_path_buf(),
+        error,
+    })?;
     let (lo, hi) = model.bounds();
     let radius = (hi - lo).length() / 2.0;
     if model.triangle_count() == 0 || !radius.is_finite() || radius <= 0.0 {

@@ -123,7 +123,11 @@ fn a_vertex_index_out_of_range_is_refused() {
     let mut bytes = std::fs::read(&path).expect("read");
     bytes[offset..offset + 2].copy_from_slice(&999u16.to_le_bytes());
     std::fs::write(&path, bytes).expect("write");
-    case.refused("index 999 names a vertex beyond its 24 vertices");
+    // The message says where the index lies, never its value (a buffer may hold any bytes).
+    let message = case.refused(&format!(
+        "index out of range in accessor 2 (buffer 0, offset {offset}) (the primitive has 24 vertices)"
+    ));
+    assert!(!message.contains("999"), "{message}");
 }
 
 #[test]
@@ -167,7 +171,8 @@ fn a_node_cycle_and_a_remote_buffer_are_refused() {
     Case::json("loop.gltf", &doc).refused("node 0 is its own ancestor");
     let mut doc = box_json();
     doc["buffers"][0]["uri"] = json!("https://example.com/box.bin");
-    Case::json("remote.gltf", &doc).refused("only files beside the model and data URIs are read");
+    Case::json("remote.gltf", &doc)
+        .refused("only files in the model's folder and data URIs are read");
 }
 
 /// box.gltf declaring a required compression extension, with a second primitive whose

@@ -227,6 +227,8 @@ impl Statements {
             positions,
             triangles,
             corner_normals,
+            colors: None,
+            corner_uvs: None,
         })
     }
 }

@@ -1,21 +1,23 @@
 //! The bytes behind a glTF document's buffers: the GLB binary chunk, `data:` URIs, and files
-//! beside the model. Nothing is fetched from the network.
+//! in the model's folder or below it (`model_folder` refuses every other path). Nothing is
+//! fetched from the network.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use base64::Engine;
 use base64::engine::general_purpose::STANDARD;
 
 use super::error::GltfError;
-use crate::input_file::{MAX_MODEL_BYTES, read_bounded};
+use crate::input_file::MAX_MODEL_BYTES;
+use crate::model_folder::{ModelFolder, ReferenceKind};
 
 /// Loads every buffer of `document` in order. `blob` is the GLB binary chunk, when there is one;
-/// relative URIs are resolved against `folder` (the model file's folder). Each file read is
+/// relative URIs are resolved inside `folder` (the model file's folder). Each file read is
 /// added to `files`.
 pub fn load_buffers(
     document: &::gltf::Document,
     blob: Option<Vec<u8>>,
-    folder: &Path,
+    folder: &ModelFolder,
     files: &mut Vec<PathBuf>,
 ) -> Result<Vec<Vec<u8>>, GltfError> {
     let mut blob = blob;
@@ -51,8 +53,8 @@ pub fn load_buffers(
         .collect()
 }
 
-/// The bytes a buffer URI names: a base64 `data:` URI, or a file relative to `folder`.
-fn read_uri(uri: &str, folder: &Path, files: &mut Vec<PathBuf>) -> Result<Vec<u8>, String> {
+/// The bytes a buffer URI names: a base64 `data:` URI, or a file inside `folder`.
+fn read_uri(uri: &str, folder: &ModelFolder, files: &mut Vec<PathBuf>) -> Result<Vec<u8>, String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let (_, payload) = rest
             .split_once(";base64,")
@@ -62,13 +64,15 @@ fn read_uri(uri: &str, folder: &Path, files: &mut Vec<PathBuf>) -> Result<Vec<u8
             .map_err(|e| format!("bad base64: {e}"));
     }
     if has_scheme(uri) {
-        return Err("only files beside the model and data URIs are read".into());
+        return Err("only files in the model's folder and data URIs are read".into());
     }
-    let relative = percent_decode(uri).ok_or("the URI has a malformed %-escape")?;
-    let path = folder.join(relative);
-    files.push(path.clone());
-    read_bounded(&path, MAX_MODEL_BYTES, "a glTF buffer")
-        .map_err(|e| format!("{}: {e}", path.display()))
+    let path = folder
+        .resolve(uri, ReferenceKind::Uri)
+        .map_err(|e| e.to_string())?;
+    files.push(path);
+    folder
+        .read(uri, ReferenceKind::Uri, MAX_MODEL_BYTES, "a glTF buffer")
+        .map_err(|e| e.to_string())
 }
 
 /// Whether `uri` starts with a scheme such as `https:` (RFC 3986: a letter, then letters,
@@ -86,40 +90,9 @@ fn has_scheme(uri: &str) -> bool {
     }
 }
 
-/// `text` with its `%XX` escapes decoded as UTF-8; `None` when an escape or the result is malformed.
-pub fn percent_decode(text: &str) -> Option<String> {
-    let bytes = text.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        if bytes[i] == b'%' {
-            let hex = std::str::from_utf8(bytes.get(i + 1..i + 3)?).ok()?;
-            out.push(u8::from_str_radix(hex, 16).ok()?);
-            i += 3;
-        } else {
-            out.push(bytes[i]);
-            i += 1;
-        }
-    }
-    String::from_utf8(out).ok()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn percent_escapes_decode_and_malformed_ones_are_refused() {
-        assert_eq!(
-            percent_decode("box%20data.bin").as_deref(),
-            Some("box data.bin")
-        );
-        assert_eq!(percent_decode("a%C3%A9.bin").as_deref(), Some("aé.bin"));
-        assert_eq!(percent_decode("plain.bin").as_deref(), Some("plain.bin"));
-        assert_eq!(percent_decode("bad%2"), None);
-        assert_eq!(percent_decode("bad%zz.bin"), None);
-        assert_eq!(percent_decode("%ff"), None, "not UTF-8");
-    }
 
     #[test]
     fn schemes_are_told_from_paths() {
@@ -133,7 +106,8 @@ mod tests {
 
     #[test]
     fn data_uris_decode_and_remote_ones_are_refused() {
-        let folder = Path::new(".");
+        let folder = ModelFolder::of(std::path::Path::new("Cargo.toml")).expect("folder");
+        let folder = &folder;
         let mut files = Vec::new();
         assert_eq!(
             read_uri(
@@ -154,6 +128,8 @@ mod tests {
         );
         let remote = read_uri("https://example.com/a.bin", folder, &mut files).expect_err("remote");
         assert!(remote.contains("only files"), "{remote}");
+        let outside = read_uri("../x.bin", folder, &mut files).expect_err("outside");
+        assert!(outside.contains("outside the model's folder"), "{outside}");
         assert!(files.is_empty(), "no file was read: {files:?}");
     }
 }

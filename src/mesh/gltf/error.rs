@@ -49,11 +49,13 @@ pub enum GltfError {
         role: &'static str,
         reason: String,
     },
-    /// A triangle corner that names a vertex the primitive does not have.
-    #[error("{primitive}: index {index} names a vertex beyond its {vertices} vertices")]
+    /// A triangle corner that names a vertex the primitive does not have. The index's value is
+    /// not shown: a buffer may hold any bytes, and a message must not echo them.
+    #[error("{primitive}: index out of range in {place} (the primitive has {vertices} vertices)")]
     IndexOutOfRange {
         primitive: String,
-        index: u32,
+        /// Where the index lies: "accessor 3 (buffer 1, offset 24)".
+        place: String,
         vertices: usize,
     },
     /// A vertex position that is NaN or infinite (after the node transforms).

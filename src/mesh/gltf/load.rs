@@ -16,6 +16,7 @@ use super::primitive::{PrimitiveRead, read_primitive};
 use super::warning::ImportWarning;
 use crate::input_file::{MAX_MODEL_BYTES, read_bounded};
 use crate::mesh::ModelGeometry;
+use crate::model_folder::ModelFolder;
 use crate::scene::Material;
 
 /// Most node instances a file may expand to (a node reached through several parents counts
@@ -59,15 +60,16 @@ impl GltfModel {
     }
 }
 
-/// Reads the glTF or GLB file at `path`; buffers named by relative URIs are read from its folder.
+/// Reads the glTF or GLB file at `path`; buffers named by relative URIs are read from its folder
+/// or below it, and from nowhere else.
 pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
     let bytes = read_bounded(path, MAX_MODEL_BYTES, "a model file").map_err(GltfError::Io)?;
     let (root, blob) = parse(&bytes)?;
     let mut warnings = Vec::new();
     let document = checked_document(root, &mut warnings)?;
-    let folder = path.parent().unwrap_or(Path::new(""));
+    let folder = ModelFolder::of(path).map_err(GltfError::Io)?;
     let mut buffer_files = Vec::new();
-    let buffers = load_buffers(&document, blob, folder, &mut buffer_files)?;
+    let buffers = load_buffers(&document, blob, &folder, &mut buffer_files)?;
     let mut parts = Vec::new();
     let mut skipped = 0;
     let mut triangles = 0u64;

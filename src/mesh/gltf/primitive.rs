@@ -125,10 +125,10 @@ pub fn read_primitive(
             .collect(),
         None => (0..positions.len() as u32).collect(),
     };
-    if let Some(&index) = order.iter().find(|&&i| i as usize >= positions.len()) {
+    if let Some(corner) = order.iter().position(|&i| i as usize >= positions.len()) {
         return Err(GltfError::IndexOutOfRange {
             primitive: label.to_string(),
-            index,
+            place: index_place(primitive.indices().as_ref(), corner),
             vertices: positions.len(),
         });
     }
@@ -155,6 +155,26 @@ pub fn read_primitive(
         &triangles,
         normals.as_deref(),
     )))
+}
+
+/// Where the `corner`-th index of a primitive lies, for an error that must not echo the value
+/// itself (it may be any bytes): "accessor 3 (buffer 1, offset 24)", or "the implicit order".
+fn index_place(indices: Option<&Accessor>, corner: usize) -> String {
+    let Some(accessor) = indices else {
+        return "the implicit vertex order".to_string();
+    };
+    match accessor.view() {
+        Some(view) if accessor.sparse().is_none() => {
+            let stride = view.stride().unwrap_or(accessor.size());
+            let offset = view.offset() + accessor.offset() + corner * stride;
+            format!(
+                "accessor {} (buffer {}, offset {offset})",
+                accessor.index(),
+                view.buffer().index()
+            )
+        }
+        _ => format!("accessor {} (element {corner})", accessor.index()),
+    }
 }
 
 fn unreadable(label: &str, reason: &str) -> PrimitiveRead {
@@ -223,6 +243,8 @@ fn weld(positions: &[Vec3], triangles: &[[u32; 3]], normals: Option<&[Vec3]>) ->
                 .map(|t| t.map(|i| normals[i as usize]))
                 .collect()
         }),
+        colors: None,
+        corner_uvs: None,
     }
 }
 
