@@ -2,6 +2,7 @@
 //! wins where over image size × face count), written as CSVs, a Markdown report and plots;
 //! `rastray bench throughput SCENE`: throughput on one scene.
 
+use super::stdout::outln;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -70,9 +71,10 @@ pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     let machine = machine();
-    println!(
+    outln!(
         "rastray bench: {}, {} render(s) per point, {machine}",
-        config.size, config.reps
+        config.size,
+        config.reps
     );
     let load_before = load_average();
     let results = run(&config, &ProgressBar::new(0))?;
@@ -86,18 +88,18 @@ pub fn run_bench(args: &BenchArgs) -> anyhow::Result<()> {
     report::write(&args.out, &results, &cells, &config, &machine)?;
     plot::write(&args.out, &results, config.size)?;
     crossover_plot::write(&args.out, &cells)?;
-    println!();
+    outln!();
     for claim in rastray::bench::analysis::claims(&results, config.size) {
-        println!("[{}] {}", claim.verdict.name(), claim.study);
-        println!("          rastray: {}", claim.ours);
+        outln!("[{}] {}", claim.verdict.name(), claim.study);
+        outln!("          rastray: {}", claim.ours);
     }
     for bvh in BvhCount::ALL {
-        println!(
+        outln!(
             "[who wins where] {}",
             crossover_report::verdict(&cells, bvh)
         );
     }
-    println!(
+    outln!(
         "\nwrote {}, {}, {}, {}, {} and {} in {}",
         CSV_FILE,
         REPORT_FILE,
@@ -140,7 +142,7 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
     let (scene, base) = super::load_scene(Some(&args.scene))?;
     let world = Arc::new(World::build(&scene, &base)?);
     let t = measure(&scene, &world, args.size, args.reps)?;
-    println!(
+    outln!(
         "{}: {} triangles at {}, median of {} render(s)",
         args.scene.display(),
         world.triangle_count(),
@@ -148,7 +150,7 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
         args.reps
     );
     for r in &t.raster {
-        println!(
+        outln!(
             "{:8} {:>9} ms  {:>8} Mtriangles/s  {:>8} Mpixels/s  ({} Mpx/s of face area; \
              renderer kept, one-off {} ms)",
             r.algorithm.name(),
@@ -161,7 +163,7 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
     }
     let ray = &t.ray;
     let s = ray.stats;
-    println!(
+    outln!(
         "{:8} {:>9} ms  BVH build {} ms, tracing {} ms",
         "Ray",
         number(ray.time().as_secs_f64() * 1e3),
@@ -169,7 +171,7 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
         number(ray.trace_time().as_secs_f64() * 1e3)
     );
     for kind in ray.kinds() {
-        println!(
+        outln!(
             "         {:10} {:>12} rays  {:>8} Mrays/s  ({} ms on its own)",
             kind.name,
             kind.rays,
@@ -177,7 +179,7 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
             number(kind.time.as_secs_f64() * 1e3)
         );
     }
-    println!(
+    outln!(
         "         {:10} {:>12} rays  {:>8} Mrays/s",
         "all",
         s.rays.total(),
@@ -185,7 +187,7 @@ fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
     );
     // One line for scripts: key=value, times in milliseconds.
     let [primary, shadow, reflection] = ray.kinds();
-    println!(
+    outln!(
         "ray-throughput tracing_ms={:.3} build_ms={:.3} rays={} primary_ms={:.3} primary_rays={} shadow_ms={:.3} shadow_rays={} reflection_ms={:.3} reflection_rays={}",
         ray.trace_time().as_secs_f64() * 1e3,
         ray.build.as_secs_f64() * 1e3,

@@ -1,5 +1,6 @@
 //! `rastray info`: what a scene holds.
 
+use super::stdout::outln;
 use std::path::Path;
 
 use rastray::text_escape::Escaped;
@@ -10,22 +11,22 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
     let report = super::build_world(&scene, &base)?;
     let world = &report.world;
     super::print_warnings(&scene, world);
-    println!("{}", Escaped(&path.display().to_string()));
+    outln!("{}", Escaped(&path.display().to_string()));
     let c = &scene.camera;
-    println!(
+    outln!(
         "camera   position {}  target {}  up {}  fov {}°",
         fmt_vec(c.position),
         fmt_vec(c.target),
         fmt_vec(c.up),
         c.fov
     );
-    println!(
+    outln!(
         "ambient  {}   background {}   max_depth {}",
         scene.ambient,
         fmt_vec(scene.background),
         scene.max_depth
     );
-    println!("objects  {}", scene.objects.len());
+    outln!("objects  {}", scene.objects.len());
     for (i, object) in scene.objects.iter().enumerate() {
         // The world objects this scene object became: one, or one per glTF primitive.
         let parts: Vec<(&WorldObject, Option<&str>)> = world
@@ -37,7 +38,7 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
             .collect();
         let triangles: usize = parts.iter().map(|(b, _)| b.mesh.triangle_count()).sum();
         let area: f32 = parts.iter().map(|(b, _)| b.mesh.surface_area()).sum();
-        println!(
+        outln!(
             "  [{i}] {:<12} {:<12} {:>9} triangles  area {:>10.3}  centre {}",
             Escaped(object.label()),
             object.shape.kind().name(),
@@ -47,7 +48,7 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
         );
         for (built, label) in &parts {
             if let Some(label) = label {
-                println!(
+                outln!(
                     "        {}: {} triangles  colour {}",
                     Escaped(label),
                     built.mesh.triangle_count(),
@@ -56,9 +57,9 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
             }
         }
     }
-    println!("lights   {}", scene.lights.len());
+    outln!("lights   {}", scene.lights.len());
     for (i, light) in scene.lights.iter().enumerate() {
-        println!(
+        outln!(
             "  [{i}] {:<12} position {}  intensity {}  colour {}",
             Escaped(light.name.as_deref().unwrap_or("light")),
             fmt_vec(light.position),
@@ -66,15 +67,15 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
             fmt_vec(light.color)
         );
     }
-    println!("triangles {}", world.triangle_count());
+    outln!("triangles {}", world.triangle_count());
     match world.bounds() {
-        Some((lo, hi)) => println!(
+        Some((lo, hi)) => outln!(
             "bounds   min {}  max {}  size {}",
             fmt_vec(lo),
             fmt_vec(hi),
             fmt_vec(hi - lo)
         ),
-        None => println!("bounds   (empty scene)"),
+        None => outln!("bounds   (empty scene)"),
     }
     Ok(())
 }

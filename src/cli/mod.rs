@@ -7,6 +7,7 @@ mod format_arg;
 mod graphics_arg;
 mod info;
 mod render;
+mod stdout;
 mod view;
 
 use std::path::{Path, PathBuf};

@@ -1,6 +1,7 @@
 //! `rastray render`: one scene to one image or one turntable, with the time taken and a
 //! progress bar for long renders.
 
+use super::stdout::outln;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -168,7 +169,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     if destination == Destination::Stdout {
         let _ = writeln!(std::io::stderr(), "{summary}");
     } else {
-        println!("{summary}");
+        outln!("{summary}");
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -2,7 +2,7 @@
 //! iTerm2) where the terminal can show them, else half blocks, or plain text when stdout is not
 //! a terminal.
 
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -66,10 +66,9 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     let bytes = protocol
         .encode(&PreviewImage::from_frame(&frame), area)
         .context("cannot encode the picture")?;
-    let mut out = stdout.lock();
-    out.write_all(&bytes)?;
+    super::stdout::bytes(&bytes);
     if protocol.has_pixels() {
-        out.write_all(b"\n")?;
+        super::stdout::bytes(b"\n");
     }
-    out.flush().context("cannot write to stdout")
+    Ok(())
 }

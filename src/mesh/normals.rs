@@ -7,6 +7,20 @@ use super::face_list::Mesh;
 /// Adjacent faces meeting at less than this angle share a smoothed normal, degrees.
 pub const CREASE_ANGLE_DEGREES: f32 = 60.0;
 
+/// `v` scaled to unit length, or zero when it has no direction that f32 can state: zero, not
+/// finite, or so short that its squared length is subnormal (normalizing that gives a vector
+/// whose length is not 1: a normal of length 2e-22 came out 1.13 long). Normals from files and
+/// from faces both pass through it, and a zero normal counts as missing.
+pub fn unit_or_zero(v: Vec3) -> Vec3 {
+    let squared = v.length_squared();
+    if squared.is_normal() {
+        // As glam's `normalize_or_zero` computes it, so normals keep their bits.
+        v * (1.0 / squared.sqrt())
+    } else {
+        Vec3::ZERO
+    }
+}
+
 /// Builds a [`Mesh`] from welded `positions` and `triangles`.
 ///
 /// Flat: every triangle gets its own three vertices carrying the face normal.
@@ -21,7 +35,7 @@ pub fn with_normals(positions: &[Vec3], triangles: &[[u32; 3]], smooth: bool) ->
         .iter()
         .map(|&t| area_weighted_normal(positions, t))
         .collect();
-    let unit: Vec<Vec3> = weighted.iter().map(|n| n.normalize_or_zero()).collect();
+    let unit: Vec<Vec3> = weighted.iter().map(|&n| unit_or_zero(n)).collect();
     smooth_normals(positions, triangles, &weighted, &unit)
 }
 
@@ -46,7 +60,7 @@ fn flat_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Mesh {
         flat: true,
     };
     for tri in triangles {
-        let unit = area_weighted_normal(positions, *tri).normalize_or_zero();
+        let unit = unit_or_zero(area_weighted_normal(positions, *tri));
         let n = if unit == Vec3::ZERO { Vec3::Y } else { unit };
         let base = mesh.positions.len() as u32;
         for &i in tri {
@@ -106,7 +120,7 @@ fn smooth_normals(
                     sum += weighted[g as usize];
                 }
             }
-            let mut n = sum.normalize_or_zero();
+            let mut n = unit_or_zero(sum);
             if n == Vec3::ZERO {
                 n = around
                     .iter()
@@ -135,4 +149,51 @@ fn smooth_normals(
         mesh.triangles.push(out);
     }
     mesh
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_normal_too_short_for_f32_counts_as_missing() {
+        for v in [
+            Vec3::new(2e-22, 0.0, 0.0),
+            Vec3::new(1e-20, 1e-20, 1e-20),
+            Vec3::ZERO,
+            Vec3::new(f32::NAN, 0.0, 1.0),
+            Vec3::new(f32::INFINITY, 0.0, 0.0),
+        ] {
+            assert_eq!(unit_or_zero(v), Vec3::ZERO, "{v}");
+        }
+        // The shortest that still normalizes comes out unit length.
+        let short = Vec3::new(2e-19, 0.0, 0.0);
+        assert!((unit_or_zero(short).length() - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn ordinary_normals_keep_glam_bits() {
+        let mut x = 0.1f32;
+        for _ in 0..1000 {
+            x = (x * 3.7 + 0.13).fract();
+            let v = Vec3::new(x - 0.5, (x * 7.0).fract() - 0.2, (x * 13.0).fract() * 3.0);
+            assert_eq!(unit_or_zero(v), v.normalize_or_zero(), "{v}");
+        }
+    }
+
+    #[test]
+    fn a_tiny_triangle_takes_its_neighbours_normal() {
+        // A unit right triangle in XY, and beside it one whose cross product is subnormal.
+        let positions = [
+            Vec3::ZERO,
+            Vec3::X,
+            Vec3::Y,
+            Vec3::new(1e-20, 0.0, 0.0),
+            Vec3::new(0.0, 1e-20, 0.0),
+        ];
+        let mesh = with_normals(&positions, &[[0, 1, 2], [0, 3, 4]], true);
+        for n in &mesh.normals {
+            assert!((n.length() - 1.0).abs() < 1e-6, "{n}");
+        }
+    }
 }

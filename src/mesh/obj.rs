@@ -9,6 +9,7 @@ use std::path::Path;
 use glam::Vec3;
 
 use super::geometry::ModelGeometry;
+use super::normals::unit_or_zero;
 use super::obj_error::{ObjError, ObjProblem};
 use crate::input_file::{MAX_MODEL_BYTES, open_bounded, read_bounded};
 use crate::scene::limits::COORDINATE;
@@ -122,7 +123,7 @@ impl Statements {
                 let n = three_numbers(&mut words).ok_or(ObjProblem::Malformed(
                     "a normal is `vn x y z`, three numbers",
                 ))?;
-                self.normals.push(Vec3::from_array(n).normalize_or_zero());
+                self.normals.push(unit_or_zero(Vec3::from_array(n)));
             }
             Some("f") => self.face(words)?,
             // Texture coordinates, groups, materials, smoothing groups, points and lines: not

@@ -10,7 +10,7 @@ use glam::{Mat3, Mat4, Vec3};
 use super::accessor::check_accessor;
 use super::error::GltfError;
 use super::warning::ImportWarning;
-use crate::mesh::ModelGeometry;
+use crate::mesh::{ModelGeometry, unit_or_zero};
 
 /// What became of a primitive.
 #[derive(Debug)]
@@ -200,7 +200,8 @@ fn assemble(mode: Mode, order: &[u32]) -> Vec<[u32; 3]> {
 }
 
 /// Normals moved by the inverse transpose of `linear`; `None` when the transform is singular or
-/// a normal is zero or not finite (normals are then computed from the faces, as for OBJ).
+/// a normal is zero, not finite or too short to normalize in f32 (normals are then computed from
+/// the faces, as for OBJ).
 fn transform_normals(normals: &[Vec3], linear: Mat3) -> Option<Vec<Vec3>> {
     if linear.determinant() == 0.0 {
         return None;
@@ -209,8 +210,11 @@ fn transform_normals(normals: &[Vec3], linear: Mat3) -> Option<Vec<Vec3>> {
     normals
         .iter()
         .map(|&n| {
-            let moved = (normal_matrix * n).normalize_or_zero();
-            (moved != Vec3::ZERO && moved.is_finite()).then_some(moved)
+            if unit_or_zero(n) == Vec3::ZERO {
+                return None;
+            }
+            let moved = unit_or_zero(normal_matrix * n);
+            (moved != Vec3::ZERO).then_some(moved)
         })
         .collect()
 }
@@ -287,5 +291,9 @@ mod tests {
         assert!(moved[0].distance(Vec3::new(0.5, 1.0, 0.0).normalize()) < 1e-6);
         assert!(transform_normals(&[n], Mat3::from_diagonal(Vec3::new(0.0, 1.0, 1.0))).is_none());
         assert!(transform_normals(&[Vec3::ZERO], Mat3::IDENTITY).is_none());
+        // Its squared length is subnormal: normalized, it would come out 1.13 long.
+        let tiny = Vec3::new(2e-22, 0.0, 0.0);
+        assert!(transform_normals(&[tiny], Mat3::IDENTITY).is_none());
+        assert!(transform_normals(&[Vec3::new(1e-19, 0.0, 0.0)], Mat3::IDENTITY).is_none());
     }
 }
