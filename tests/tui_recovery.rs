@@ -37,6 +37,18 @@ fn wait_until(what: &str, done: impl Fn() -> bool) {
     }
 }
 
+/// The first failure the autosave reports for the status line.
+fn first_problem(autosave: &mut Autosave, app: &App) -> String {
+    let start = Instant::now();
+    loop {
+        if let Some(problem) = autosave.note(app) {
+            return problem;
+        }
+        assert!(start.elapsed() < TIMEOUT, "no failure reported");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
 fn holds(path: &Path, app: &App) -> bool {
     std::fs::read_to_string(path).is_ok_and(|t| t == to_toml_string(app.document().scene()))
 }
@@ -202,14 +214,33 @@ fn a_failed_write_is_reported_once() {
     let mut autosave = Autosave::start().unwrap();
     apply(&mut app, Action::Add(AddKind::Box));
     autosave.note(&app);
-    let start = Instant::now();
-    let problem = loop {
-        if let Some(problem) = autosave.note(&app) {
-            break problem;
-        }
-        assert!(start.elapsed() < TIMEOUT, "no failure reported");
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let problem = first_problem(&mut autosave, &app);
     assert!(problem.contains("scene.recovered.toml"), "{problem}");
     assert_eq!(autosave.note(&app), None);
+}
+
+#[test]
+fn a_link_planted_in_the_recovery_files_place_is_refused_and_reported() {
+    let (dir, mut app, recovery) = editor();
+    // A dangling link: following it would create the file it names.
+    let victim = dir.path().join("victim.txt");
+    std::os::unix::fs::symlink(&victim, &recovery).unwrap();
+    let mut autosave = Autosave::start().unwrap();
+    apply(&mut app, Action::Add(AddKind::Box));
+    autosave.note(&app);
+    let problem = first_problem(&mut autosave, &app);
+    assert!(problem.contains("symlink"), "{problem}");
+    assert!(!victim.exists(), "the link's target was not created");
+    assert!(
+        std::fs::symlink_metadata(&recovery)
+            .unwrap()
+            .file_type()
+            .is_symlink(),
+        "the link is left as it was"
+    );
+    // A link to an existing file is neither followed nor moved aside either.
+    std::fs::write(&victim, "theirs").unwrap();
+    let mut file = RecoveryFile::default();
+    assert!(file.write(app.document().scene(), &recovery).is_err());
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "theirs");
 }

@@ -97,9 +97,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let progress = Progress::new();
     // SIGINT and SIGTERM cancel the render: whatever was being written is removed (a file is
     // only renamed into place when complete), and the exit status says which signal it was.
+    // The handler cancels the progress itself, so a signal that arrives before the file is
+    // renamed into place always wins (`Sink::commit` checks just before the rename).
     let signal = Arc::new(AtomicUsize::new(0));
     for number in [SIGINT, SIGTERM] {
         signal_hook::flag::register_usize(number, Arc::clone(&signal), number as usize)?;
+        signal_hook::flag::register(number, progress.cancel_flag())?;
     }
     let started = Instant::now();
     let exported = std::thread::scope(|s| {
@@ -116,9 +119,6 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         let mut bar: Option<ProgressBar> = None;
         while !job.is_finished() {
             std::thread::sleep(Duration::from_millis(5));
-            if signal.load(Ordering::Relaxed) != 0 {
-                progress.cancel();
-            }
             if bar.is_none() && started.elapsed() > PROGRESS_DELAY {
                 bar = Some(progress_bar(&options, args.size, output));
             }
@@ -134,16 +134,21 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let shown = Escaped(&destination.path().display().to_string()).to_string();
     let exported = match (exported, signal.load(Ordering::Relaxed)) {
         (Err(ExportError::Render(RenderError::Cancelled(_))), number) if number != 0 => {
-            let name = if number == SIGINT as usize {
-                "SIGINT"
-            } else {
-                "SIGTERM"
-            };
             let _ = writeln!(
                 std::io::stderr(),
-                "rastray: stopped by {name}; {shown} not written"
+                "rastray: stopped by {}; {shown} not written",
+                signal_name(number)
             );
             return Ok(ExitCode::from(128 + number as u8));
+        }
+        (Ok(exported), number) if number != 0 => {
+            // The signal came after the file was renamed into place: the work is done and kept.
+            let _ = writeln!(
+                std::io::stderr(),
+                "rastray: {} arrived after {shown} was written; kept",
+                signal_name(number)
+            );
+            exported
         }
         (exported, _) => exported?,
     };
@@ -172,6 +177,15 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         outln!("{summary}");
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// "SIGINT" or "SIGTERM", the signals a render stops on.
+fn signal_name(number: usize) -> &'static str {
+    if number == SIGINT as usize {
+        "SIGINT"
+    } else {
+        "SIGTERM"
+    }
 }
 
 /// The bar shown on stderr while a long render runs (hidden when stderr is not a terminal):

@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use super::error::ExportError;
 use crate::atomic_file::{AtomicFile, final_target};
 use crate::input_file::kind_of;
+use crate::render::{Cancelled, Progress, RenderError};
 
 /// Where an export writes.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -109,6 +110,25 @@ impl Destination {
     }
 }
 
+/// Why [`Sink::commit`] did not finish.
+#[derive(Debug, thiserror::Error)]
+pub enum SinkCommitError {
+    #[error(transparent)]
+    Io(#[from] std::io::Error),
+    #[error(transparent)]
+    Cancelled(#[from] Cancelled),
+}
+
+impl SinkCommitError {
+    /// The export error of a commit to `path`.
+    pub fn at(self, path: &Path) -> ExportError {
+        match self {
+            SinkCommitError::Io(error) => ExportError::io(path, error),
+            SinkCommitError::Cancelled(cancelled) => RenderError::from(cancelled).into(),
+        }
+    }
+}
+
 /// An export being written: finish it with [`Sink::commit`]. A file dropped without a commit is
 /// removed and the target left as it was; a stream keeps what was written.
 #[derive(Debug)]
@@ -120,12 +140,20 @@ pub enum Sink {
 
 impl Sink {
     /// Finishes the export: renames a file over its target, flushes a stream. A write error
-    /// the stream reports only now (a full disk, `/dev/full`) is returned.
-    pub fn commit(self) -> std::io::Result<()> {
+    /// the stream reports only now (a full disk, `/dev/full`) is returned. When `progress` is
+    /// cancelled by then (a signal arrived before the rename), a file is not renamed: its
+    /// temporary file is removed and the result is the cancellation.
+    pub fn commit(self, progress: &Progress) -> Result<(), SinkCommitError> {
         match self {
-            Sink::Atomic(file) => file.commit(),
-            Sink::Stream(mut file) => file.flush(),
-            Sink::Stdout(mut out) => out.flush(),
+            Sink::Atomic(file) => {
+                if file.commit_unless(|| progress.is_cancelled())? {
+                    Ok(())
+                } else {
+                    Err(SinkCommitError::Cancelled(Cancelled))
+                }
+            }
+            Sink::Stream(mut file) => Ok(file.flush()?),
+            Sink::Stdout(mut out) => Ok(out.flush()?),
         }
     }
 }

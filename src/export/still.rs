@@ -46,8 +46,7 @@ pub fn save_image_to(
     let mut sink = destination.open()?;
     sink.write_all(&bytes)
         .map_err(|error| ExportError::io(path, error))?;
-    progress.check().map_err(RenderError::from)?;
-    sink.commit().map_err(|error| ExportError::io(path, error))
+    sink.commit(progress).map_err(|error| error.at(path))
 }
 
 /// Renders `world` seen by `camera` with `options` and writes the image to `destination` in

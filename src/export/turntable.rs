@@ -146,8 +146,7 @@ pub fn render_turntable(
     let file = out
         .into_inner()
         .map_err(|e| ExportError::io(path, e.into_error()))?;
-    progress.check().map_err(RenderError::from)?;
-    file.commit().map_err(|e| ExportError::io(path, e))?;
+    file.commit(progress).map_err(|e| e.at(path))?;
     Ok(TurntableStats {
         frames: turntable.frames,
         triangles: world.triangle_count(),

@@ -1,5 +1,6 @@
 //! Progress and cancellation shared between a render and whoever waits for it.
 
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 /// Counts finished image rows (of the supersampled image) and carries a cancel flag. Cheap to
@@ -8,7 +9,8 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 pub struct Progress {
     done: AtomicU64,
     total: AtomicU64,
-    cancelled: AtomicBool,
+    /// Shared so that a signal handler can set it directly ([`Progress::cancel_flag`]).
+    cancelled: Arc<AtomicBool>,
 }
 
 /// The render was cancelled before it finished.
@@ -42,6 +44,12 @@ impl Progress {
     /// Asks the render to stop as soon as it can.
     pub fn cancel(&self) {
         self.cancelled.store(true, Ordering::Relaxed);
+    }
+
+    /// The cancel flag itself, for a signal handler to set (`signal_hook::flag::register`):
+    /// setting it is [`Progress::cancel`], with no thread in between.
+    pub fn cancel_flag(&self) -> Arc<AtomicBool> {
+        Arc::clone(&self.cancelled)
     }
 
     /// Whether [`Progress::cancel`] was called.

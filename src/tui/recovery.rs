@@ -6,7 +6,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use crate::atomic_file::write_atomically;
+use crate::atomic_file::write_atomically_no_follow;
 use crate::scene::{Scene, SceneError, to_toml_string};
 
 /// `<scene>.recovered.toml` next to the scene file, or `rastray-recovered.toml` in the current
@@ -111,6 +111,13 @@ impl RecoveryFile {
             error,
         };
         let text = to_toml_string(scene);
+        if std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink()) {
+            // A link planted where the recovery file goes is neither followed nor moved aside.
+            return Err(io(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "a symlink is in the recovery file's place: not followed, not written",
+            )));
+        }
         let on_disk = std::fs::read_to_string(path).ok();
         if on_disk.as_ref() == Some(&text) {
             self.written = Some((path.to_path_buf(), text));
@@ -123,7 +130,7 @@ impl RecoveryFile {
                 .expect("some number is free");
             std::fs::rename(path, aside).map_err(io)?;
         }
-        write_atomically(path, text.as_bytes()).map_err(io)?;
+        write_atomically_no_follow(path, text.as_bytes()).map_err(io)?;
         self.written = Some((path.to_path_buf(), text));
         Ok(())
     }
