@@ -11,10 +11,8 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use rastray::export::{
-    Destination, ExportError, Exported, MAX_FPS, MAX_FRAMES, Output, Turntable, render_to,
-};
-use rastray::render::{Algorithm, Progress, RenderError, RenderOptions, Size};
+use rastray::export::{Destination, Exported, MAX_FPS, MAX_FRAMES, Output, Turntable, render_to};
+use rastray::render::{Algorithm, Progress, RenderOptions, Size};
 use rastray::text_escape::Escaped;
 use signal_hook::consts::{SIGINT, SIGTERM};
 
@@ -133,7 +131,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     });
     let shown = Escaped(&destination.path().display().to_string()).to_string();
     let exported = match (exported, signal.load(Ordering::Relaxed)) {
-        (Err(ExportError::Render(RenderError::Cancelled(_))), number) if number != 0 => {
+        // A signal cancels the render, or the wait on a stream's reader: either way it stopped.
+        (Err(_), number) if number != 0 => {
             let _ = writeln!(
                 std::io::stderr(),
                 "rastray: stopped by {}; {shown} not written",

@@ -3,11 +3,11 @@
 //! character device (`/dev/null`, a terminal) is written as a stream, as is standard output.
 //! Nothing else is written: a directory, a block device or a socket is refused.
 
-use std::fs::File;
-use std::io::{Stdout, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::error::ExportError;
+use super::stream::Stream;
 use crate::atomic_file::{AtomicFile, final_target};
 use crate::input_file::kind_of;
 use crate::render::{Cancelled, Progress, RenderError};
@@ -68,18 +68,16 @@ impl Destination {
         }
     }
 
-    /// Starts writing: an atomic file, or the stream opened for writing.
-    pub fn open(&self) -> Result<Sink, ExportError> {
+    /// Starts writing: an atomic file, or the stream opened for writing. Waiting on a stream (for
+    /// a FIFO's reader, or for a full pipe to drain) ends when `progress` is cancelled.
+    pub fn open(&self, progress: &Progress) -> Result<Sink, ExportError> {
         let io = |e| ExportError::io(self.path(), e);
         Ok(match self {
             Destination::File(path) => Sink::Atomic(AtomicFile::create(path).map_err(io)?),
-            Destination::Stream(path) => Sink::Stream(
-                std::fs::OpenOptions::new()
-                    .write(true)
-                    .open(path)
-                    .map_err(io)?,
-            ),
-            Destination::Stdout => Sink::Stdout(std::io::stdout()),
+            Destination::Stream(path) => {
+                Sink::Stream(Stream::open(path, progress.cancel_flag()).map_err(io)?)
+            }
+            Destination::Stdout => Sink::Stream(Stream::stdout(progress.cancel_flag())),
         })
     }
 
@@ -134,8 +132,8 @@ impl SinkCommitError {
 #[derive(Debug)]
 pub enum Sink {
     Atomic(AtomicFile),
-    Stream(File),
-    Stdout(Stdout),
+    /// A FIFO, a character device or standard output.
+    Stream(Stream),
 }
 
 impl Sink {
@@ -152,8 +150,7 @@ impl Sink {
                     Err(SinkCommitError::Cancelled(Cancelled))
                 }
             }
-            Sink::Stream(mut file) => Ok(file.flush()?),
-            Sink::Stdout(mut out) => Ok(out.flush()?),
+            Sink::Stream(mut stream) => Ok(stream.flush()?),
         }
     }
 }
@@ -162,16 +159,14 @@ impl Write for Sink {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
         match self {
             Sink::Atomic(file) => file.write(buf),
-            Sink::Stream(file) => file.write(buf),
-            Sink::Stdout(out) => out.write(buf),
+            Sink::Stream(stream) => stream.write(buf),
         }
     }
 
     fn flush(&mut self) -> std::io::Result<()> {
         match self {
             Sink::Atomic(file) => file.flush(),
-            Sink::Stream(file) => file.flush(),
-            Sink::Stdout(out) => out.flush(),
+            Sink::Stream(stream) => stream.flush(),
         }
     }
 }

@@ -4,7 +4,9 @@
 //! `output` says what to write and holds [`render_to_file`], the one way the command line and
 //! the editor write renders; `format` chooses the encoding from a file name and an explicit
 //! request; `png`, `exr`, `gif_animation` and `apng` encode; `still` renders one image;
-//! `turntable` orbits the camera and streams its frames through `animation` into one file.
+//! `turntable` orbits the camera and streams its frames through `animation` into one file;
+//! `destination` says where bytes go, and `stream` writes FIFOs, devices and standard output in
+//! waits that a signal can end.
 
 mod animation;
 mod apng;
@@ -16,6 +18,7 @@ mod gif_animation;
 mod output;
 mod png;
 mod still;
+mod stream;
 mod turntable;
 
 pub use destination::{Destination, Sink};

@@ -43,7 +43,7 @@ pub fn save_image_to(
     let path = destination.path();
     let bytes = encode_image(frame, format).map_err(|e| ExportError::encode(path, format, e))?;
     progress.check().map_err(RenderError::from)?;
-    let mut sink = destination.open()?;
+    let mut sink = destination.open(progress)?;
     sink.write_all(&bytes)
         .map_err(|error| ExportError::io(path, error))?;
     sink.commit(progress).map_err(|error| error.at(path))

@@ -118,7 +118,7 @@ pub fn render_turntable(
         frames: turntable.frames,
         fps: turntable.fps,
     };
-    let mut out = BufWriter::new(destination.open()?);
+    let mut out = BufWriter::new(destination.open(progress)?);
     progress.start(turntable.frames as u64);
     let orbit = Orbit {
         world,
