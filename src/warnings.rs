@@ -70,6 +70,60 @@ impl fmt::Display for Warning {
     }
 }
 
+/// Most warnings of one kind printed in full; the rest are counted in one line.
+pub const WARNINGS_SHOWN_PER_KIND: usize = 5;
+
+impl Warning {
+    /// Which kind of warning this is, as a small number (warnings of one kind are summarised
+    /// together).
+    fn kind(&self) -> usize {
+        match self {
+            Warning::NoLights => 0,
+            Warning::BehindCamera(_) => 1,
+            Warning::ZeroAreaTriangles { .. } => 2,
+            Warning::NoArea(_) => 3,
+        }
+    }
+
+    /// The line that stands for `more` further warnings of this one's kind.
+    fn more(&self, more: usize) -> String {
+        let objects = if more == 1 { "object" } else { "objects" };
+        match self {
+            Warning::NoLights => format!("and {more} more such warnings"),
+            Warning::BehindCamera(_) => {
+                format!("and {more} more {objects} entirely behind the camera")
+            }
+            Warning::ZeroAreaTriangles { .. } => {
+                format!("and {more} more {objects} with zero-area triangles")
+            }
+            Warning::NoArea(_) => format!("and {more} more {objects} with no area at all"),
+        }
+    }
+}
+
+/// `warnings` as lines to print: of each kind, the first `shown` in full and then one line that
+/// counts the rest ("and 52790 more objects entirely behind the camera"), so that a scene of
+/// many objects gives a few lines, not one per object. Order is kept within a kind.
+pub fn summarised(warnings: &[Warning], shown: usize) -> Vec<String> {
+    let mut counts = [0usize; 4];
+    let mut lines = Vec::new();
+    for warning in warnings {
+        let count = &mut counts[warning.kind()];
+        *count += 1;
+        if *count <= shown {
+            lines.push(warning.to_string());
+        }
+    }
+    for kind in 0..counts.len() {
+        if counts[kind] > shown
+            && let Some(first) = warnings.iter().find(|w| w.kind() == kind)
+        {
+            lines.push(first.more(counts[kind] - shown));
+        }
+    }
+    lines
+}
+
 /// The warnings for `world`, built from `scene`, seen through `camera`, in scene order: first
 /// the scene-wide ones, then each object's.
 pub fn warnings(scene: &Scene, camera: &Camera, world: &World) -> Vec<Warning> {

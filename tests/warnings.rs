@@ -143,3 +143,22 @@ fn the_shipped_scenes_have_no_warnings() {
         }
     }
 }
+
+#[test]
+fn many_warnings_of_one_kind_are_summarised_after_the_first_few() {
+    let mut text = CAMERA_AND_LIGHT.to_string();
+    for i in 0..12 {
+        text += &box_at(&format!("behind{i}"), 9.0, [1.0, 1.0, 1.0]);
+    }
+    text += &box_at("front", 0.0, [1.0, 1.0, 1.0]);
+    let scene = rastray::scene::from_toml_str(&text, Path::new("many.toml")).expect("scene");
+    let all = warnings_of(&scene, Path::new("."));
+    assert_eq!(all.len(), 12);
+    let lines = rastray::warnings::summarised(&all, 5);
+    assert_eq!(lines.len(), 6, "{lines:#?}");
+    assert!(lines[0].contains("behind0"), "{lines:#?}");
+    assert!(lines[4].contains("behind4"), "{lines:#?}");
+    assert_eq!(lines[5], "and 7 more objects entirely behind the camera");
+    // Few enough are all shown.
+    assert_eq!(rastray::warnings::summarised(&all, 12).len(), 12);
+}

@@ -27,15 +27,16 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
         scene.max_depth
     );
     outln!("objects  {}", scene.objects.len());
-    for (i, object) in scene.objects.iter().enumerate() {
-        // The world objects this scene object became: one, or one per glTF primitive.
-        let parts: Vec<(&WorldObject, Option<&str>)> = world
-            .objects
-            .iter()
-            .zip(&report.sources)
-            .filter(|(_, source)| source.object == i)
-            .map(|(built, source)| (built, source.part.as_deref()))
-            .collect();
+    // The world objects each scene object became: one, or one per glTF primitive (grouped in one
+    // pass, so that info stays linear in the number of objects).
+    let mut parts_of: Vec<Vec<(&WorldObject, Option<&str>)>> =
+        vec![Vec::new(); scene.objects.len()];
+    for (built, source) in world.objects.iter().zip(&report.sources) {
+        if let Some(parts) = parts_of.get_mut(source.object) {
+            parts.push((built, source.part.as_deref()));
+        }
+    }
+    for (i, (object, parts)) in scene.objects.iter().zip(&parts_of).enumerate() {
         let triangles: usize = parts.iter().map(|(b, _)| b.mesh.triangle_count()).sum();
         let area: f32 = parts.iter().map(|(b, _)| b.mesh.surface_area()).sum();
         outln!(
@@ -46,7 +47,7 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
             area,
             fmt_vec(object.shape.center())
         );
-        for (built, label) in &parts {
+        for (built, label) in parts {
             if let Some(label) = label {
                 outln!(
                     "        {}: {} triangles  colour {}",

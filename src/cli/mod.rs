@@ -128,10 +128,13 @@ pub fn load_scene(path: Option<&Path>) -> anyhow::Result<(Scene, PathBuf)> {
     }
 }
 
-/// Prints the scene's warnings on stderr, one `warning: …` line each.
+/// Prints the scene's warnings on stderr, one `warning: …` line each, and of each kind past the
+/// first few a line that counts the rest.
 pub fn print_warnings(scene: &Scene, world: &rastray::World) {
-    for warning in rastray::warnings(scene, &scene.camera, world) {
-        eprintln!("warning: {}", Escaped(&warning.to_string()));
+    let warnings = rastray::warnings(scene, &scene.camera, world);
+    for line in rastray::warnings::summarised(&warnings, rastray::warnings::WARNINGS_SHOWN_PER_KIND)
+    {
+        eprintln!("warning: {}", Escaped(&line));
     }
 }
 
