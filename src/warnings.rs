@@ -114,11 +114,11 @@ pub fn summarised(warnings: &[Warning], shown: usize) -> Vec<String> {
             lines.push(warning.to_string());
         }
     }
-    for kind in 0..counts.len() {
-        if counts[kind] > shown
+    for (kind, &count) in counts.iter().enumerate() {
+        if count > shown
             && let Some(first) = warnings.iter().find(|w| w.kind() == kind)
         {
-            lines.push(first.more(counts[kind] - shown));
+            lines.push(first.more(count - shown));
         }
     }
     lines
