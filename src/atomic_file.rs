@@ -1,5 +1,6 @@
-//! Atomic file writes: a temporary file in the same directory, synced, then renamed over the
-//! target, so a crash leaves either the old file or the new one.
+//! Atomic file writes: a temporary file in the same directory (`temporary_file`: nameless until
+//! complete where the file system allows), synced, then renamed over the target, so a crash leaves
+//! either the old file or the new one, and no half-written file.
 //!
 //! Only a regular file, or a path where nothing exists yet, is replaced this way. A symlink is
 //! followed and its target replaced in the target's own folder, so the link stays a link. A
@@ -10,6 +11,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use crate::input_file::kind_of;
+use crate::temporary_file::TemporaryFile;
 
 /// Most symlinks followed from a path to its target (as Linux's `MAXSYMLINKS`).
 const MAX_LINKS: usize = 40;
@@ -47,7 +49,7 @@ pub fn write_atomically_no_follow(path: &Path, bytes: &[u8]) -> std::io::Result<
 pub struct AtomicFile {
     /// The file replaced: `path` itself, or the file its symlinks lead to.
     target: PathBuf,
-    tmp: tempfile::NamedTempFile,
+    tmp: TemporaryFile,
 }
 
 impl AtomicFile {
@@ -72,19 +74,9 @@ impl AtomicFile {
             Some(d) if !d.as_os_str().is_empty() => d,
             _ => Path::new("."),
         };
-        let mut builder = tempfile::Builder::new();
-        builder.prefix(".rastray-").suffix(".tmp");
-        // Mode 0666 for a new file: `open` takes the umask off, as for any program's new file
-        // (tempfile's own default is 0600).
-        #[cfg(unix)]
-        builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-        let tmp = builder.tempfile_in(dir)?;
+        // Mode 0666 for a new file: `open` takes the umask off, as for any program's new file.
+        let tmp = TemporaryFile::new_in(dir, 0o666)?;
         Ok(AtomicFile { target, tmp })
-    }
-
-    /// The temporary file being written, which [`AtomicFile::commit`] renames.
-    pub fn temporary_path(&self) -> &Path {
-        self.tmp.path()
     }
 
     /// Replaces the target with what was written. A replaced file keeps its permission bits
@@ -107,7 +99,7 @@ impl AtomicFile {
         if cancelled() {
             return Ok(false);
         }
-        self.tmp.persist(&self.target).map_err(|e| e.error)?;
+        self.tmp.persist(&self.target)?;
         Ok(true)
     }
 }

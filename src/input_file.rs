@@ -76,7 +76,7 @@ fn exact(bytes: u64) -> String {
 }
 
 /// `16 MiB`, `1.5 GiB`: binary units, one decimal when not whole.
-fn human(bytes: u64) -> String {
+pub fn human(bytes: u64) -> String {
     const UNITS: [&str; 4] = ["bytes", "KiB", "MiB", "GiB"];
     let mut value = bytes as f64;
     let mut unit = 0;

@@ -36,6 +36,7 @@ pub mod model_folder;
 pub mod model_scene;
 pub mod render;
 pub mod scene;
+pub mod temporary_file;
 pub mod terminal_image;
 pub mod text_escape;
 pub mod tui;

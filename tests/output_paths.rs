@@ -246,7 +246,19 @@ fn an_unknown_extension_names_the_formats() {
     assert!(!dir.path().join("out.jpg").exists());
 }
 
-/// Starts a long turntable into `dir/spin.gif`, waits until its temporary file exists, sends
+/// The files in `dir` that process `pid` has open, as `/proc` names them: a temporary file
+/// with no name yet (`O_TMPFILE`) shows as `dir/#1234 (deleted)`.
+fn open_in(pid: u32, dir: &Path) -> Vec<String> {
+    let Ok(fds) = std::fs::read_dir(format!("/proc/{pid}/fd")) else {
+        return Vec::new();
+    };
+    fds.filter_map(|fd| std::fs::read_link(fd.ok()?.path()).ok())
+        .filter(|target| target.starts_with(dir))
+        .map(|target| target.display().to_string())
+        .collect()
+}
+
+/// Starts a long turntable into `dir/spin.gif`, waits until its temporary file is open, sends
 /// `signal`, and returns how the process ended.
 fn signal_during_write(dir: &Path, signal: rustix::process::Signal) -> (Output, Vec<String>) {
     let child = rastray(dir)
@@ -259,7 +271,7 @@ fn signal_during_write(dir: &Path, signal: rustix::process::Signal) -> (Output, 
         .expect("starts");
     let started = Instant::now();
     let seen = loop {
-        let found = leftovers(dir);
+        let found = open_in(child.id(), dir);
         if !found.is_empty() || started.elapsed() > Duration::from_secs(60) {
             break found;
         }
@@ -292,4 +304,18 @@ fn a_signal_during_the_write_leaves_no_temporary_file() {
         );
         assert!(!dir.path().join("spin.gif").exists());
     }
+}
+
+#[test]
+fn sigkill_in_the_middle_of_a_turntable_leaves_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, seen) = signal_during_write(dir.path(), rustix::process::Signal::KILL);
+    assert_eq!(seen.len(), 1, "the temporary file was open: {seen:?}");
+    assert_eq!(o.status.signal(), Some(9));
+    let names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    assert!(names.is_empty(), "nothing left in the folder: {names:?}");
 }

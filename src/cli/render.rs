@@ -1,7 +1,6 @@
 //! `rastray render`: one scene to one image or one turntable, with the time taken and a
 //! progress bar for long renders.
 
-use super::stdout::outln;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -11,13 +10,17 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use rastray::export::{Destination, Exported, MAX_FPS, MAX_FRAMES, Output, Turntable, render_to};
+use rastray::export::{
+    AnimationFormat, Destination, Exported, MAX_FPS, MAX_FRAMES, Output, Turntable, render_to,
+};
+use rastray::input_file::human;
 use rastray::render::{Algorithm, Progress, RenderOptions, Size};
 use rastray::text_escape::Escaped;
 use signal_hook::consts::{SIGINT, SIGTERM};
 
 use super::algorithm_arg::AlgorithmArg;
 use super::format_arg::FormatArg;
+use super::stdout::outln;
 
 /// A long render shows a progress bar after this long.
 const PROGRESS_DELAY: Duration = Duration::from_millis(400);
@@ -92,6 +95,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     destination.refuse_inputs(&inputs)?;
     let world = Arc::new(report.world);
     super::print_warnings(&scene, &world);
+    if let (Output::Turntable(turntable, format), Destination::File(path)) = (output, &destination)
+    {
+        warn_unless_room(turntable, format, &options, path);
+    }
     let progress = Progress::new();
     // SIGINT and SIGTERM cancel the render: whatever was being written is removed (a file is
     // only renamed into place when complete), and the exit status says which signal it was.
@@ -176,6 +183,35 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         outln!("{summary}");
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Says on stderr when the folder of `path` has less free space than the turntable may take
+/// (its frames uncompressed: an upper bound, so the file may still fit).
+fn warn_unless_room(
+    turntable: Turntable,
+    format: AnimationFormat,
+    options: &RenderOptions,
+    path: &Path,
+) {
+    let folder = match path.parent() {
+        Some(folder) if !folder.as_os_str().is_empty() => folder,
+        _ => Path::new("."),
+    };
+    let Ok(stat) = rustix::fs::statvfs(folder) else {
+        return;
+    };
+    let free = stat.f_bavail.saturating_mul(stat.f_frsize);
+    let largest = turntable.largest_size(options.width, options.height, options.alpha, format);
+    if largest > free {
+        let _ = writeln!(
+            std::io::stderr(),
+            "warning: the turntable may take up to {} (its {} frames uncompressed); {} has {} free",
+            human(largest),
+            turntable.frames,
+            Escaped(&folder.display().to_string()),
+            human(free)
+        );
+    }
 }
 
 /// "SIGINT" or "SIGTERM", the signals a render stops on.

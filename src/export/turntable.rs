@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use super::animation::{Animation, ReadyFrame};
 use super::destination::{Destination, Sink};
 use super::error::ExportError;
-use super::format::AnimationFormat;
+use super::format::{AnimationFormat, PngDepth};
 use crate::render::{Frame, Progress, RenderError, RenderOptions, Renderer};
 use crate::scene::Camera;
 use crate::world::World;
@@ -80,6 +80,27 @@ impl Turntable {
             return Err(TurntableError::Fps(self.fps));
         }
         Ok(())
+    }
+
+    /// The most bytes the turntable's file can take, `width`×`height` pixels a frame in `format`
+    /// with or without `alpha`: every frame's pixels uncompressed (GIF one byte a pixel, APNG
+    /// three or four channels of one or two bytes), which compression only lowers.
+    pub fn largest_size(
+        &self,
+        width: u32,
+        height: u32,
+        alpha: bool,
+        format: AnimationFormat,
+    ) -> u64 {
+        let bytes_per_pixel = match format {
+            AnimationFormat::Gif => 1,
+            AnimationFormat::Apng(depth) => {
+                let channels = if alpha { 4 } else { 3 };
+                let bytes = if depth == PngDepth::Sixteen { 2 } else { 1 };
+                channels * bytes
+            }
+        };
+        u64::from(self.frames) * u64::from(width) * u64::from(height) * bytes_per_pixel
     }
 
     /// The camera of frame `k`: `camera` turned about its target by k/frames of a full turn,
