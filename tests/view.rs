@@ -181,3 +181,104 @@ fn plain_text_has_no_escape_and_fills_the_width() {
     let shades: std::collections::HashSet<char> = text.chars().filter(|c| *c != '\n').collect();
     assert!(shades.len() >= 4, "{text}");
 }
+
+/// The sub-cells (2 columns × `rows` rows, bit `row * 2 + column`) that `glyph` fills, for the
+/// glyphs of the half-block, quadrant and sextant sets, as Unicode defines them.
+fn glyph_mask(glyph: char) -> (u32, u32) {
+    const QUADRANTS: &str = " ▘▝▀▖▌▞▛▗▚▐▜▄▙▟█";
+    if let Some(mask) = QUADRANTS.chars().position(|c| c == glyph) {
+        return (2, mask as u32);
+    }
+    let code = glyph as u32;
+    assert!(
+        (0x1FB00..=0x1FB3B).contains(&code),
+        "unexpected glyph {glyph:?}"
+    );
+    // Sextants count masks 1..=62 upward, leaving out 21 (left column) and 42 (right column).
+    let mut mask = code - 0x1FB00 + 1;
+    if mask >= 21 {
+        mask += 1;
+    }
+    if mask >= 42 {
+        mask += 1;
+    }
+    (3, mask)
+}
+
+/// Text cells decoded back into pixels: 6×12 a cell, each sub-cell in the foreground or the
+/// background colour by its glyph.
+fn decode_cells(text: &str) -> image::RgbImage {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut cells: Vec<Vec<(char, [u8; 3], [u8; 3])>> = Vec::new();
+    for line in &lines {
+        let (mut fg, mut bg) = ([255u8; 3], [0u8; 3]);
+        let mut row = Vec::new();
+        let mut rest = *line;
+        while let Some(c) = rest.chars().next() {
+            if c == '\x1b' {
+                let end = rest.find('m').expect("SGR ends");
+                let params: Vec<u8> = rest[2..end]
+                    .split(';')
+                    .filter_map(|p| p.parse().ok())
+                    .collect();
+                let mut i = 0;
+                while i < params.len() {
+                    if (params[i] == 38 || params[i] == 48) && params.get(i + 1) == Some(&2) {
+                        let rgb = [params[i + 2], params[i + 3], params[i + 4]];
+                        if params[i] == 38 {
+                            fg = rgb
+                        } else {
+                            bg = rgb
+                        }
+                        i += 5;
+                    } else {
+                        i += 1;
+                    }
+                }
+                rest = &rest[end + 1..];
+            } else {
+                row.push((c, fg, bg));
+                rest = &rest[c.len_utf8()..];
+            }
+        }
+        cells.push(row);
+    }
+    let (cols, rows) = (cells[0].len() as u32, cells.len() as u32);
+    let mut img = image::RgbImage::new(cols * 6, rows * 12);
+    for (y, row) in cells.iter().enumerate() {
+        assert_eq!(row.len() as u32, cols, "every line has every cell");
+        for (x, &(glyph, fg, bg)) in row.iter().enumerate() {
+            let (grid_rows, mask) = glyph_mask(glyph);
+            for py in 0..12 {
+                for px in 0..6 {
+                    let sub = (py / (12 / grid_rows)) * 2 + px / 3;
+                    let c = if mask >> sub & 1 == 1 { fg } else { bg };
+                    img.put_pixel(x as u32 * 6 + px, y as u32 * 12 + py, image::Rgb(c));
+                }
+            }
+        }
+    }
+    img
+}
+
+/// Each cell set, decoded back into pixels, is close to a full render of the same framing, and
+/// the finer sets are closer: sextants at least as close as quadrants, quadrants as half blocks.
+#[test]
+fn text_cells_decode_to_the_rendered_picture() {
+    let dir = tempfile::tempdir().unwrap();
+    let reference = rendered(480, 276, dir.path());
+    let mut previous = 0.0;
+    for set in ["halfblock", "quadrant", "sextant"] {
+        let text = String::from_utf8(view(set, dir.path())).unwrap();
+        assert!(text.lines().all(|l| l.ends_with("\x1b[0m")), "{set}");
+        let shown = decode_cells(&text);
+        assert_eq!(shown.dimensions(), (480, 276), "{set}: 80×23 cells");
+        let db = psnr(&shown, &reference);
+        assert!(db >= 30.0, "{set}: PSNR {db:.2} dB");
+        assert!(
+            db >= previous,
+            "{set}: {db:.2} dB, below the coarser set's {previous:.2}"
+        );
+        previous = db;
+    }
+}

@@ -1,7 +1,7 @@
 //! The `--graphics` values, shared by the editor and `rastray view`.
 
 use clap::ValueEnum;
-use rastray::terminal_image::Protocol;
+use rastray::terminal_image::{GlyphSet, Protocol};
 use rastray::tui::ColorMode;
 use rastray::tui::graphics::GraphicsRequest;
 
@@ -14,8 +14,14 @@ pub enum GraphicsArg {
     Kitty,
     Sixel,
     Iterm2,
-    /// Half-block text.
+    /// Half blocks `▀▄▌▐`: 2×2 sub-cells a cell, two colours.
     Halfblock,
+    /// Quadrants `▘▝▖▗▚▞▙▛▜▟`: 2×2 sub-cells in any pattern (`view` only, for now).
+    Quadrant,
+    /// Sextants (Unicode 13, U+1FB00…): 2×3 sub-cells (`view` only, for now).
+    Sextant,
+    /// Braille dots: 2×4 (`view` only, for now).
+    Braille,
     /// A character ramp with no escape sequences (`view` only).
     Plain,
 }
@@ -29,8 +35,14 @@ impl GraphicsArg {
             GraphicsArg::Sixel => GraphicsRequest::Sixel,
             GraphicsArg::Iterm2 => GraphicsRequest::Iterm2,
             GraphicsArg::Halfblock => GraphicsRequest::HalfBlock,
-            GraphicsArg::Plain => anyhow::bail!(
-                "--graphics plain is for `rastray view`; the editor takes auto, kitty, sixel, iterm2 or halfblock"
+            GraphicsArg::Plain
+            | GraphicsArg::Quadrant
+            | GraphicsArg::Sextant
+            | GraphicsArg::Braille => anyhow::bail!(
+                "--graphics {} is for `rastray view`; the editor takes auto, kitty, sixel, iterm2 or halfblock",
+                self.to_possible_value()
+                    .map(|v| v.get_name().to_string())
+                    .unwrap_or_default()
             ),
         })
     }
@@ -42,8 +54,16 @@ impl GraphicsArg {
             GraphicsArg::Kitty => Some(Protocol::Kitty),
             GraphicsArg::Sixel => Some(Protocol::Sixel),
             GraphicsArg::Iterm2 => Some(Protocol::Iterm2),
-            GraphicsArg::Halfblock => Some(Protocol::HalfBlock(ColorMode::Truecolor)),
+            GraphicsArg::Halfblock => Some(cells(GlyphSet::HalfBlock)),
+            GraphicsArg::Quadrant => Some(cells(GlyphSet::Quadrant)),
+            GraphicsArg::Sextant => Some(cells(GlyphSet::Sextant)),
+            GraphicsArg::Braille => Some(cells(GlyphSet::Braille)),
             GraphicsArg::Plain => Some(Protocol::Plain),
         }
     }
+}
+
+/// Text cells of `set` in truecolor.
+fn cells(set: GlyphSet) -> Protocol {
+    Protocol::Cells(set, ColorMode::Truecolor)
 }

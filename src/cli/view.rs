@@ -53,11 +53,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     let cols = args.width.or(terminal_cols).unwrap_or(DEFAULT_COLS);
     let cell = CellSize::default();
     let area = CellArea::for_aspect(cols, ASPECT, cell);
-    let (width, height) = if protocol.has_pixels() {
-        area.pixels(cell)
-    } else {
-        area.half_block_pixels()
-    };
+    let (width, height) = protocol.picture_size(area, cell);
     let options = RenderOptions::new(args.algorithm.0, width, height);
     options.check()?;
     let world = Arc::new(World::build(&scene, &base)?);

@@ -1,6 +1,6 @@
 //! Which way to draw a picture, chosen by the user or guessed from the environment.
 
-use super::{CellArea, halfblock, iterm2, kitty, sixel};
+use super::{CellArea, CellSize, GlyphSet, glyph_cells, halfblock, iterm2, kitty, sixel};
 use crate::tui::preview::{ColorMode, PreviewImage};
 
 /// A way to put a picture on a terminal.
@@ -12,8 +12,8 @@ pub enum Protocol {
     Sixel,
     /// iTerm2 inline images (iTerm2, WezTerm).
     Iterm2,
-    /// Half-block text cells with SGR colours.
-    HalfBlock(ColorMode),
+    /// Text cells of a glyph set with SGR colours.
+    Cells(GlyphSet, ColorMode),
     /// A character ramp with no escape sequence.
     Plain,
 }
@@ -50,16 +50,32 @@ impl Protocol {
         } else {
             let truecolor = env("COLORTERM")
                 .is_some_and(|v| v.eq_ignore_ascii_case("truecolor") || v == "24bit");
-            Protocol::HalfBlock(if truecolor {
-                ColorMode::Truecolor
-            } else {
-                ColorMode::Ansi256
-            })
+            Protocol::Cells(
+                GlyphSet::HalfBlock,
+                if truecolor {
+                    ColorMode::Truecolor
+                } else {
+                    ColorMode::Ansi256
+                },
+            )
         }
     }
 
-    /// The bytes that draw `image` over `area` (for text protocols, `image` has one pixel per
-    /// column and two per row).
+    /// The size of the picture to render for `area` with cells of `cell` pixels: the cells'
+    /// pixels for a pixel protocol, [`glyph_cells::SAMPLES_X`]×[`glyph_cells::SAMPLES_Y`] a cell
+    /// for glyph cells, one pixel a column and two a row for the plain ramp.
+    pub fn picture_size(self, area: CellArea, cell: CellSize) -> (u32, u32) {
+        match self {
+            Protocol::Kitty | Protocol::Sixel | Protocol::Iterm2 => area.pixels(cell),
+            Protocol::Cells(..) => (
+                area.cols * glyph_cells::SAMPLES_X,
+                area.rows * glyph_cells::SAMPLES_Y,
+            ),
+            Protocol::Plain => area.half_block_pixels(),
+        }
+    }
+
+    /// The bytes that draw `image` over `area`; `image` is of [`Protocol::picture_size`].
     pub fn encode(
         self,
         image: &PreviewImage,
@@ -69,7 +85,9 @@ impl Protocol {
             Protocol::Kitty => kitty::encode(image, area)?,
             Protocol::Iterm2 => iterm2::encode(image, area)?,
             Protocol::Sixel => sixel::encode(image),
-            Protocol::HalfBlock(mode) => halfblock::encode(image, mode).into_bytes(),
+            Protocol::Cells(set, mode) => {
+                glyph_cells::encode(image, area.cols, area.rows, set, mode).into_bytes()
+            }
             Protocol::Plain => halfblock::encode_plain(image).into_bytes(),
         })
     }
@@ -110,11 +128,11 @@ mod tests {
                 ("TERM", "xterm-256color"),
                 ("COLORTERM", "truecolor")
             ])),
-            Protocol::HalfBlock(ColorMode::Truecolor)
+            Protocol::Cells(GlyphSet::HalfBlock, ColorMode::Truecolor)
         );
         assert_eq!(
             Protocol::from_env(env(&[("TERM", "xterm")])),
-            Protocol::HalfBlock(ColorMode::Ansi256)
+            Protocol::Cells(GlyphSet::HalfBlock, ColorMode::Ansi256)
         );
         assert_eq!(
             Protocol::detect(false, env(&[("TERM", "xterm-kitty")])),
