@@ -205,11 +205,14 @@ fn glyph_mask(glyph: char) -> (u32, u32) {
     (3, mask)
 }
 
+/// A glyph with its foreground and background colours.
+type TextCell = (char, [u8; 3], [u8; 3]);
+
 /// Text cells decoded back into pixels: 6×12 a cell, each sub-cell in the foreground or the
 /// background colour by its glyph.
 fn decode_cells(text: &str) -> image::RgbImage {
     let lines: Vec<&str> = text.lines().collect();
-    let mut cells: Vec<Vec<(char, [u8; 3], [u8; 3])>> = Vec::new();
+    let mut cells: Vec<Vec<TextCell>> = Vec::new();
     for line in &lines {
         let (mut fg, mut bg) = ([255u8; 3], [0u8; 3]);
         let mut row = Vec::new();
