@@ -19,7 +19,7 @@ pub use face_list::{Mesh, Sphere};
 pub use geometry::ModelGeometry;
 pub use icosahedron::icosahedron;
 pub use mesh_file::{MeshFile, MeshFileError};
-pub use normals::{CREASE_ANGLE_DEGREES, with_normals};
+pub use normals::{CREASE_ANGLE_DEGREES, with_colors_and_normals, with_normals};
 pub use obj::{ObjModel, load_obj};
 pub use obj_error::{ObjError, ObjProblem};
 pub use patch::FaceList;
