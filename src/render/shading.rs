@@ -47,14 +47,65 @@ impl<'a> Lighting<'a> {
         n: V3<L>,
         v: V3<L>,
         m: &MaterialLanes<L>,
-        mut lit: impl FnMut(usize, &Light, L::Mask) -> L::Mask,
+        lit: impl FnMut(usize, &Light, L::Mask) -> L::Mask,
     ) -> V3<L> {
+        let mut c = m.color * L::splat(self.ambient);
+        self.each_light(p, n, v, m, lit, |light, n_dot_l, specular, strength| {
+            let diffuse = m.color * (m.diffuse * n_dot_l);
+            let term = V3::new(
+                diffuse.x + specular,
+                diffuse.y + specular,
+                diffuse.z + specular,
+            );
+            c += term.mul_elements(V3::splat(light.color)) * strength;
+        });
+        c
+    }
+
+    /// The lighting of [`Lighting::shade_lanes`] cut in two parts for an albedo that is known
+    /// only later (Gouraud shading with per-pixel albedo: OpenGL's separate specular colour):
+    /// the diffuse and ambient factor `D = Ia + Σ I·att(d)·Lc·Kd·max(0, N·L)` and the specular
+    /// colour `S = Σ I·att(d)·Lc·Ks·max(0, R·V)^p`, so that the colour with albedo `a` is
+    /// `a ⊙ D + S`: the same terms, summed in another order. `m.color` is not read.
+    #[inline(always)]
+    pub fn shade_parts_lanes<L: Lanes>(
+        &self,
+        p: V3<L>,
+        n: V3<L>,
+        v: V3<L>,
+        m: &MaterialLanes<L>,
+        lit: impl FnMut(usize, &Light, L::Mask) -> L::Mask,
+    ) -> (V3<L>, V3<L>) {
+        let (ambient, zero) = (L::splat(self.ambient), L::splat(0.0));
+        let mut diffuse = V3::new(ambient, ambient, ambient);
+        let mut specular = V3::new(zero, zero, zero);
+        self.each_light(p, n, v, m, lit, |light, n_dot_l, highlight, strength| {
+            let color = V3::splat(light.color);
+            diffuse += color * (m.diffuse * n_dot_l * strength);
+            specular += color * (highlight * strength);
+        });
+        (diffuse, specular)
+    }
+
+    /// The per-light work both forms share: for each light that faces and reaches some lane,
+    /// `add(light, N·L, Ks·max(0, R·V)^p, I·att(d))`, the strength zero in the lanes it does
+    /// not reach and the specular term zero where it cannot show. The normal is flipped toward
+    /// the viewer first.
+    #[inline(always)]
+    fn each_light<L: Lanes>(
+        &self,
+        p: V3<L>,
+        n: V3<L>,
+        v: V3<L>,
+        m: &MaterialLanes<L>,
+        mut lit: impl FnMut(usize, &Light, L::Mask) -> L::Mask,
+        mut add: impl FnMut(&Light, L, L, L),
+    ) {
         let zero = L::splat(0.0);
         let n_dot_v = n.dot(v);
         let flip = n_dot_v.lt(zero);
         let n = V3::negate_where(flip, n);
         let n_dot_v = L::negate_where(flip, n_dot_v);
-        let mut c = m.color * L::splat(self.ambient);
         for (i, light) in self.lights.iter().enumerate() {
             let to_light = V3::splat(light.position) - p;
             let d = to_light.length_squared().sqrt();
@@ -83,15 +134,8 @@ impl<'a> Lighting<'a> {
                 let spread = L::splat(1.0) + L::splat(linear) * d + L::splat(quadratic) * d * d;
                 strength = strength / spread;
             }
-            let diffuse = m.color * (m.diffuse * n_dot_l);
-            let term = V3::new(
-                diffuse.x + specular,
-                diffuse.y + specular,
-                diffuse.z + specular,
-            );
-            c += term.mul_elements(V3::splat(light.color)) * strength;
+            add(light, n_dot_l, specular, strength);
         }
-        c
     }
 
     /// [`Lighting::shade_lanes`] for one point: `lit(i, light)` says whether light `i`, which

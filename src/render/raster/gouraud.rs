@@ -1,4 +1,6 @@
-//! Z-buffer with Gouraud shading: light the vertices, interpolate the colour.
+//! Z-buffer with Gouraud shading: light the vertices, interpolate the colour. Where some mesh
+//! has vertex colours, the lit parts and the colour are interpolated apart instead
+//! (`gouraud_parts`); a world without them is drawn here alone.
 //!
 //! Only vertices of triangles that a band shows are lit: at the editor's preview size most
 //! triangles of a real mesh cover no pixel centre, and of those that do, about half are hidden
@@ -8,6 +10,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::gouraud_parts::{LitParts, SeparateSpecular};
 use super::setup::RasterScratch;
 use super::shader::VaryingColor;
 use super::varying::Varying;
@@ -33,6 +36,11 @@ pub fn render_gouraud(
         geometry,
         per_vertex,
     } = scratch;
+    if world.objects.iter().any(|o| o.mesh.colors.is_some()) {
+        let mut parts = LitParts::new(world, view.eye, per_vertex);
+        let shader = SeparateSpecular::new(world);
+        return draw::<3>(geometry, world, view, progress, &mut parts, &shader, out);
+    }
     let mut colors = LitVertices {
         world,
         eye: view.eye,
@@ -42,7 +50,7 @@ pub fn render_gouraud(
         lit_whole: vec![false; world.objects.len()],
     };
     // Fragment stage: the interpolated colour is the pixel's colour.
-    draw(
+    draw::<1>(
         geometry,
         world,
         view,

@@ -5,6 +5,7 @@
 mod coverage;
 mod fragments;
 mod gouraud;
+mod gouraud_parts;
 mod phong;
 mod projected;
 #[cfg(target_arch = "x86_64")]
