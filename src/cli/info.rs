@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use rastray::scene::ShapeKind;
 use rastray::text_escape::Escaped;
 use rastray::world::WorldObject;
 
@@ -45,13 +46,28 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
             area,
             fmt_vec(object.shape.center())
         );
+        if object.shape.kind() == ShapeKind::Mesh {
+            let colored = parts
+                .iter()
+                .filter(|(b, _)| b.mesh.colors.is_some())
+                .count();
+            println!(
+                "        vertex colours: {}",
+                vertex_colours(colored, parts.len())
+            );
+        }
         for (built, label) in &parts {
             if let Some(label) = label {
                 println!(
-                    "        {}: {} triangles  colour {}",
+                    "        {}: {} triangles  colour {}{}",
                     Escaped(label),
                     built.mesh.triangle_count(),
-                    fmt_vec(built.material.color)
+                    fmt_vec(built.material.color),
+                    if built.mesh.colors.is_some() {
+                        "  vertex colours"
+                    } else {
+                        ""
+                    }
                 );
             }
         }
@@ -77,6 +93,16 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
         None => println!("bounds   (empty scene)"),
     }
     Ok(())
+}
+
+/// Whether a model's `parts` have vertex colours, `colored` of them do: "yes", "none", or how
+/// many parts have them.
+fn vertex_colours(colored: usize, parts: usize) -> String {
+    match colored {
+        0 => "none".to_string(),
+        _ if colored == parts => "yes".to_string(),
+        _ => format!("{colored} of {parts} parts"),
+    }
 }
 
 fn fmt_vec(v: glam::Vec3) -> String {

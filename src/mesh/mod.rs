@@ -11,6 +11,7 @@ mod obj;
 mod obj_error;
 mod patch;
 mod prism;
+mod srgb;
 mod tessellate;
 mod unique_positions;
 
@@ -24,5 +25,6 @@ pub use obj::{ObjModel, load_obj};
 pub use obj_error::{ObjError, ObjProblem};
 pub use patch::FaceList;
 pub use prism::prism;
+pub use srgb::srgb_to_linear;
 pub use tessellate::{object_transform, tessellate, tessellate_part};
 pub use unique_positions::UniquePositions;
