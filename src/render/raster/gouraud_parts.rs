@@ -6,12 +6,13 @@
 //! the surface's. Three varyings: `D`, `S`, the vertex colour.
 //!
 //! A mesh without colours in such a world is lit as plain Gouraud shading lights it, its lit
-//! colour carried as `D` with `S` = 0, vertex colour 1 and albedo 1: `1 ⊙ C + 0` is `C` bit for
-//! bit, so it looks exactly as in a world without colours.
+//! colour carried as `D` (with `S` = 0 and vertex colour 1, unused): its pixels take the
+//! interpolated `D` as it is, the bits of a world without colours.
 
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::colored::ColoredObjects;
 use super::fragments::Fragments;
 use super::shader::Shader;
 use super::varying::Varying;
@@ -244,11 +245,13 @@ impl LanesJob for LightCorners<'_> {
 }
 
 /// The fragment stage: `albedo ⊙ D + S` from the three interpolated varyings, the albedo the
-/// object's albedo colour times the vertex colour.
+/// material colour times the vertex colour, on meshes with colours; `D`, the lit colour, on
+/// the others.
 pub struct SeparateSpecular {
     /// Per object, the colour the interpolated vertex colour is multiplied by: the material
-    /// colour on a mesh with colours, white on one without (its `D` holds its lit colour).
+    /// colour on a mesh with colours, white on one without (unused).
     albedo: Vec<Vec3>,
+    colored: ColoredObjects,
 }
 
 impl SeparateSpecular {
@@ -263,6 +266,7 @@ impl SeparateSpecular {
                     None => Vec3::ONE,
                 })
                 .collect(),
+            colored: ColoredObjects::new(world),
         }
     }
 }
@@ -279,6 +283,6 @@ impl Shader<3> for SeparateSpecular {
         let [diffuse, specular, color] = fragments.varying;
         let lit = albedo.mul_elements(color).mul_elements(diffuse);
         let c = V3::new(lit.x + specular.x, lit.y + specular.y, lit.z + specular.z);
-        fragments.write(c, row);
+        fragments.write(self.colored.select(objects, c, diffuse), row);
     }
 }

@@ -4,6 +4,7 @@
 
 use glam::Vec3;
 
+use super::colored::ColoredObjects;
 use super::fragments::Fragments;
 use super::setup::RasterScratch;
 use super::shader::Shader;
@@ -75,6 +76,7 @@ struct PhongShader<'a> {
     view: &'a View,
     lighting: Lighting<'a>,
     materials: ObjectMaterials,
+    colored: ColoredObjects,
 }
 
 impl Shader<1> for PhongShader<'_> {
@@ -108,13 +110,13 @@ impl Shader<1> for PhongShader<'_> {
     }
 }
 
-/// With the vertex colour as the second varying: the albedo is the material colour times it
-/// (white on meshes without colours, which changes no bit).
+/// With the vertex colour as the second varying: the albedo is the material colour times it,
+/// on meshes with colours; the others keep their material colour as it is.
 impl Shader<2> for PhongShader<'_> {
     #[inline(always)]
     fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 2>, row: &mut [Vec3]) {
         let mut material = self.materials.of_lanes(&fragments.object);
-        material.color = material.color.mul_elements(fragments.varying[1]);
+        material.color = self.albedo(fragments, material.color);
         let color = self.light(
             fragments.columns(),
             fragments.y,
@@ -136,9 +138,8 @@ impl Shader<2> for PhongShader<'_> {
     ) {
         debug_assert_eq!(low.y, high.y);
         let mut material = self.materials.of_pair::<L>(&low.object, &high.object);
-        material.color = material
-            .color
-            .mul_elements(V3::pair(low.varying[1], high.varying[1]));
+        let (low_color, high_color) = V3::halves(material.color);
+        material.color = V3::pair(self.albedo(low, low_color), self.albedo(high, high_color));
         let color = self.light(
             L::pair(low.columns(), high.columns()),
             low.y,
@@ -159,7 +160,16 @@ impl<'a> PhongShader<'a> {
             view,
             lighting: Lighting::new(world),
             materials: ObjectMaterials::new(world),
+            colored: ColoredObjects::new(world),
         }
+    }
+
+    /// The albedo of `fragments` whose material colours are `color`: times the interpolated
+    /// vertex colour in the lanes whose object has colours.
+    #[inline(always)]
+    fn albedo<L: Lanes8>(&self, fragments: &Fragments<L, 2>, color: V3<L>) -> V3<L> {
+        let tinted = color.mul_elements(fragments.varying[1]);
+        self.colored.select(&fragments.object, tinted, color)
     }
 
     /// The colours of pixels in columns `x` of row `y` whose surface lies at depth `depth` on
