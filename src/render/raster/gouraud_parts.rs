@@ -10,10 +10,10 @@
 //! interpolated `D` as it is, the bits of a world without colours.
 
 use glam::Vec3;
-use rayon::prelude::*;
 
 use super::colored::ColoredObjects;
 use super::fragments::Fragments;
+use super::gouraud::{light_whole, next_corners, objects_lit_whole};
 use super::shader::Shader;
 use super::varying::Varying;
 use crate::mesh::Mesh;
@@ -77,35 +77,22 @@ impl<'a> LitParts<'a> {
 
 impl Varying for LitParts<'_> {
     fn prepare(&mut self, triangles_needed: &[usize]) {
-        let lit: Vec<bool> = self
-            .world
-            .objects
-            .iter()
-            .zip(triangles_needed)
-            .map(|(o, &needed)| 3 * needed >= o.mesh.positions.len())
-            .collect();
+        let lit = objects_lit_whole(self.world, triangles_needed);
         let mut whole = std::mem::take(&mut *self.whole);
-        whole.resize_with(self.world.objects.len(), Vec::new);
         let this = &*self;
-        whole
-            .par_iter_mut()
-            .zip(&self.world.objects)
-            .enumerate()
-            .zip(&lit)
-            .filter(|(_, lit)| **lit)
-            .for_each(|((object, (parts, o)), _)| {
-                let count = o.mesh.positions.len();
-                parts.clear();
-                parts.resize(2 * count, Vec3::ZERO);
-                let (first, second) = parts.split_at_mut(count);
-                run_on_best_lanes(LightAll {
-                    lit: this,
-                    object,
-                    mesh: &o.mesh,
-                    first,
-                    second,
-                });
+        light_whole(self.world, &lit, &mut whole, |object, mesh, parts| {
+            let count = mesh.positions.len();
+            parts.clear();
+            parts.resize(2 * count, Vec3::ZERO);
+            let (first, second) = parts.split_at_mut(count);
+            run_on_best_lanes(LightAll {
+                lit: this,
+                object,
+                mesh,
+                first,
+                second,
             });
+        });
         *self.whole = whole;
         self.lit_whole = lit;
     }
@@ -216,28 +203,8 @@ impl LanesJob for LightCorners<'_> {
             .zip(self.second.chunks_mut(WIDTH));
         for (first, second) in outputs {
             let count = first.len();
-            let mut ids = [0; WIDTH];
-            for id in &mut ids[..count] {
-                *id = vertices.next().expect("three vertices per triangle");
-            }
-            // Lanes past the last vertex repeat it.
-            for k in count..WIDTH {
-                ids[k] = ids[count - 1];
-            }
-            let gather = |values: &[Vec3]| {
-                let v = ids.map(|i| values[i]);
-                V3::new(
-                    L::from_array(v.map(|v| v.x)),
-                    L::from_array(v.map(|v| v.y)),
-                    L::from_array(v.map(|v| v.z)),
-                )
-            };
-            let (a, b) = self.lit.light(
-                self.object,
-                material,
-                gather(&mesh.positions),
-                gather(&mesh.normals),
-            );
+            let (p, n) = next_corners(mesh, &mut vertices, count);
+            let (a, b) = self.lit.light(self.object, material, p, n);
             first.copy_from_slice(&a.to_vec3s()[..count]);
             second.copy_from_slice(&b.to_vec3s()[..count]);
         }
