@@ -353,3 +353,59 @@ fn objects_without_colours_keep_their_bits_beside_one_with_colours() {
         assert!(bits(&a) == bits(&b), "{algorithm} changed");
     }
 }
+
+#[test]
+fn gltf_color_0_reads_normalized_8_and_16_bit_rgba_as_linear_rgb() {
+    use base64::Engine;
+    // One triangle drawn twice: COLOR_0 as normalized UNSIGNED_BYTE VEC4, then as normalized
+    // UNSIGNED_SHORT VEC4. glTF colours are linear: no sRGB decode; alpha is dropped.
+    let mut bytes = Vec::new();
+    for p in [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] {
+        p.iter().for_each(|c| bytes.extend(c.to_le_bytes()));
+    }
+    bytes.extend([255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 51, 255]);
+    for c in [
+        [0u16, 65535, 0, 1],
+        [0, 0, 65535, 1],
+        [13107, 13107, 13107, 0],
+    ] {
+        c.iter().for_each(|c| bytes.extend(c.to_le_bytes()));
+    }
+    let data = base64::engine::general_purpose::STANDARD.encode(&bytes);
+    let gltf = format!(
+        r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}],
+  "nodes": [{{"mesh": 0}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "COLOR_0": 1}}}},
+                             {{"attributes": {{"POSITION": 0, "COLOR_0": 2}}}}]}}],
+  "buffers": [{{"byteLength": {}, "uri": "data:application/octet-stream;base64,{data}"}}],
+  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 36}},
+                  {{"buffer": 0, "byteOffset": 36, "byteLength": 12}},
+                  {{"buffer": 0, "byteOffset": 48, "byteLength": 24}}],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+      "min": [0, 0, 0], "max": [1, 1, 0]}},
+    {{"bufferView": 1, "componentType": 5121, "normalized": true, "count": 3, "type": "VEC4"}},
+    {{"bufferView": 2, "componentType": 5123, "normalized": true, "count": 3, "type": "VEC4"}}]}}"#,
+        bytes.len()
+    );
+    let path = write("colours.gltf", &gltf);
+    let model = match rastray::mesh::MeshFile::load(&path).expect("loads") {
+        rastray::mesh::MeshFile::Gltf(model) => model,
+        other => panic!("read as {other:?}"),
+    };
+    let colours: Vec<Vec<Vec3>> = model
+        .parts
+        .iter()
+        .map(|p| p.geometry.colors.clone().expect("COLOR_0 read"))
+        .collect();
+    let expected = [
+        [Vec3::X, Vec3::Y, Vec3::new(0.0, 0.0, 0.2)],
+        [Vec3::Y, Vec3::Z, Vec3::splat(0.2)],
+    ];
+    assert_eq!(colours.len(), 2);
+    for (got, expected) in colours.iter().zip(expected) {
+        for (g, e) in got.iter().zip(expected) {
+            assert!((*g - e).abs().max_element() < 1e-6, "{g} vs {e}");
+        }
+    }
+}
