@@ -41,19 +41,23 @@ impl<L: Lanes8, const K: usize> Fragments<L, K> {
     #[inline(always)]
     pub fn span(y: u32, run: &Run<K>, k: usize) -> Fragments<L, K> {
         let steps = L::splat(k as f32) + lane_numbers();
-        let plane =
-            |v: usize, c: usize| L::splat(run.at_start[v][c]) + L::splat(run.per_x[v][c]) * steps;
+        // Loops rather than closures over arrays, as the one-varying code had: the arithmetic
+        // stays in the caller's AVX context.
+        let mut values = [[L::splat(0.0); 4]; K];
+        for (v, varying) in values.iter_mut().enumerate() {
+            // The fourth component is 1/w for the first varying and unused for the others.
+            let components = if v == 0 { 4 } else { 3 };
+            for (c, value) in varying.iter_mut().take(components).enumerate() {
+                *value = L::splat(run.at_start[v][c]) + L::splat(run.per_x[v][c]) * steps;
+            }
+        }
         let first = (run.start + k) as u32;
         Fragments::from_interpolants(
             y,
             WIDTH,
             std::array::from_fn(|lane| first + lane as u32),
             [run.object; WIDTH],
-            std::array::from_fn(|v| {
-                // The fourth lane is 1/w for the first varying and unused for the others.
-                let w = if v == 0 { plane(v, 3) } else { L::splat(0.0) };
-                [plane(v, 0), plane(v, 1), plane(v, 2), w]
-            }),
+            values,
         )
     }
 
@@ -68,13 +72,18 @@ impl<L: Lanes8, const K: usize> Fragments<L, K> {
         values: [[L; 4]; K],
     ) -> Fragments<L, K> {
         let depth = L::splat(1.0) / values[0][3];
+        let zero = L::splat(0.0);
+        let mut varying = [V3::new(zero, zero, zero); K];
+        for (out, [vx, vy, vz, _]) in varying.iter_mut().zip(values) {
+            *out = V3::new(vx * depth, vy * depth, vz * depth);
+        }
         Fragments {
             y,
             count,
             x,
             object,
             depth,
-            varying: values.map(|[vx, vy, vz, _]| V3::new(vx * depth, vy * depth, vz * depth)),
+            varying,
         }
     }
 

@@ -174,10 +174,10 @@ fn set_planes<const K: usize>(
         }
         varying.corners(object as usize, mesh_triangles, values);
         debug_assert_eq!(values.len(), K * ids.len());
-        for (&id, values) in ids.iter().zip(values.chunks_exact(K)) {
+        let (values, _) = values.as_chunks::<K>();
+        for (&id, values) in ids.iter().zip(values) {
             let t = triangles[id as usize - 1];
-            let values: [[Vec3; 3]; K] = std::array::from_fn(|k| values[k]);
-            planes[id as usize] = bands.corners(t).planes(t, values);
+            planes[id as usize] = bands.corners(t).planes(t, *values);
         }
     }
 }
