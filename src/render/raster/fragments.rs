@@ -294,4 +294,45 @@ mod tests {
         assert_eq!((rest.count, rest.x), (2, [54, 55, 55, 55, 55, 55, 55, 55]));
         assert!(packer.take(7).is_none(), "take empties the packer");
     }
+
+    #[test]
+    fn every_varying_is_interpolated_as_the_first_and_shares_its_depth() {
+        // With three varyings, each is `start + per_x·k` divided by the first's 1/w, whether
+        // the pixel comes in a span or packed; the unused fourth components change nothing.
+        let at_start = [
+            Vec4::new(0.3, -0.7, 0.11, 0.25),
+            Vec4::new(0.9, 0.2, -0.4, 0.0),
+            Vec4::new(-0.1, 0.5, 0.6, 0.0),
+        ];
+        let per_x = [
+            Vec4::new(1.0e-3, -3.0e-4, 7.0e-5, -1.0e-5),
+            Vec4::new(-2.0e-3, 5.0e-4, 1.0e-4, 0.0),
+            Vec4::new(4.0e-4, 0.0, -6.0e-4, 0.0),
+        ];
+        let run = Run {
+            start: 10,
+            object: 0,
+            at_start,
+            per_x,
+        };
+        let span = Fragments::<F32x8, 3>::span(2, &run, 8);
+        let mut packer = Packer::<F32x8, 3>::default();
+        assert!(packer.push_run(2, &run, 8, 5).is_none());
+        let packed = packer.push_run(2, &run, 13, 3).expect("eight fragments");
+        assert_eq!(span.depth.to_array(), packed.depth.to_array());
+        for v in 0..3 {
+            assert_eq!(span.varying[v].to_vec3s(), packed.varying[v].to_vec3s());
+            for (lane, (depth, varying)) in span
+                .depth
+                .to_array()
+                .into_iter()
+                .zip(span.varying[v].to_vec3s())
+                .enumerate()
+            {
+                let k = (8 + lane) as f32;
+                assert_eq!(depth, 1.0 / (at_start[0] + per_x[0] * k).w);
+                assert_eq!(varying, (at_start[v] + per_x[v] * k).truncate() * depth);
+            }
+        }
+    }
 }
