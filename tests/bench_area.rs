@@ -39,6 +39,7 @@ fn quad_world(lo: (f32, f32), hi: (f32, f32), z: f32) -> World {
         normals: vec![Vec3::Z; 4],
         positions,
         triangles: vec![[0, 1, 2], [0, 2, 3]],
+        colors: None,
         flat: false,
     };
     world_of(vec![WorldObject::new(mesh, Material::default())])
@@ -98,6 +99,7 @@ fn a_face_behind_the_eye_counts_nothing_and_one_through_it_is_clipped() {
         ],
         normals: vec![Vec3::Y; 4],
         triangles: vec![[0, 1, 2], [0, 2, 3]],
+        colors: None,
         flat: false,
     };
     let floor = world_of(vec![WorldObject::new(mesh, Material::default())]);

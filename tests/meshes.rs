@@ -267,3 +267,46 @@ fn obj_errors_name_the_file_and_line() {
         "{e}"
     );
 }
+
+#[test]
+fn vertex_colours_stay_with_their_vertices_and_a_colour_seam_is_no_crease() {
+    use rastray::mesh::with_colors_and_normals;
+    // Two faces folded 30° along the edge (0,0,0)–(0,1,0), which each face holds with its own
+    // colour: the edge's points are given twice.
+    let positions = vec![
+        Vec3::ZERO,
+        Vec3::Y,
+        Vec3::new(-1.0, 0.0, 0.0),
+        Vec3::ZERO,
+        Vec3::Y,
+        Vec3::new(30f32.to_radians().cos(), 0.0, 30f32.to_radians().sin()),
+    ];
+    let (red, blue) = (Vec3::X, Vec3::Z);
+    let colors = vec![red, red, red, blue, blue, blue];
+    let triangles = vec![[2, 0, 1], [3, 5, 4]];
+    let smooth = with_colors_and_normals(&positions, &triangles, Some(&colors), true);
+    let out = smooth.colors.as_ref().expect("colours kept");
+    assert_eq!(out.len(), smooth.positions.len());
+    for (t, tri) in smooth.triangles.iter().enumerate() {
+        for &v in tri {
+            assert_eq!(out[v as usize], [red, blue][t], "triangle {t}'s colour");
+        }
+    }
+    // The edge's two red and two blue vertices share the smoothed normal: no crease there.
+    let edge_normals: Vec<Vec3> = (0..smooth.positions.len())
+        .filter(|&v| smooth.positions[v].x == 0.0 && smooth.positions[v].z == 0.0)
+        .map(|v| smooth.normals[v])
+        .collect();
+    assert_eq!(edge_normals.len(), 4, "split by colour, never merged");
+    assert!(
+        edge_normals
+            .iter()
+            .all(|n| n.distance(edge_normals[0]) < 1e-6)
+    );
+    let flat = with_colors_and_normals(&positions, &triangles, Some(&colors), false);
+    assert_eq!(flat.colors, Some(vec![red, red, red, blue, blue, blue]));
+    assert_eq!(
+        with_colors_and_normals(&positions, &triangles, None, true).colors,
+        None
+    );
+}

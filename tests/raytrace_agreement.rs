@@ -2,6 +2,8 @@
 //! thing: the shared lighting function with the interpolated normal at the surface seen through
 //! each pixel centre. Their 8-bit sRGB images must agree to a PSNR of at least 40 dB.
 
+mod common;
+
 use std::path::Path;
 use std::sync::Arc;
 
@@ -29,18 +31,6 @@ fn frame(scene: &Scene, world: &Arc<World>, algorithm: Algorithm) -> Frame {
     frame
 }
 
-/// PSNR in dB of two 8-bit images of the same size (infinite when identical).
-fn psnr(a: &[u8], b: &[u8]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let mse = a
-        .iter()
-        .zip(b)
-        .map(|(&x, &y)| (x as f64 - y as f64).powi(2))
-        .sum::<f64>()
-        / a.len() as f64;
-    10.0 * (255.0f64 * 255.0 / mse).log10()
-}
-
 /// Pixels where exactly one of the two images shows the background: coverage disagreements.
 fn coverage_mismatches(a: &Frame, b: &Frame, background: glam::Vec3) -> usize {
     a.pixels
@@ -54,7 +44,7 @@ fn check(path: &str) {
     let (scene, world) = load(path);
     let phong = frame(&scene, &world, Algorithm::Phong);
     let ray = frame(&scene, &world, Algorithm::Ray);
-    let db = psnr(&phong.to_srgb8(), &ray.to_srgb8());
+    let db = common::psnr(&phong.to_srgb8(), &ray.to_srgb8());
     let misses = coverage_mismatches(&phong, &ray, world.background);
     println!(
         "{path}: ray tracer vs Phong PSNR {db:.2} dB; {misses} of {} pixels differ in coverage",

@@ -3,6 +3,7 @@
 use super::stdout::outln;
 use std::path::Path;
 
+use rastray::scene::ShapeKind;
 use rastray::text_escape::Escaped;
 use rastray::world::WorldObject;
 
@@ -47,13 +48,28 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
             area,
             fmt_vec(object.shape.center())
         );
+        if object.shape.kind() == ShapeKind::Mesh {
+            let colored = parts
+                .iter()
+                .filter(|(b, _)| b.mesh.colors.is_some())
+                .count();
+            outln!(
+                "        vertex colours: {}",
+                vertex_colours(colored, parts.len())
+            );
+        }
         for (built, label) in parts {
             if let Some(label) = label {
                 outln!(
-                    "        {}: {} triangles  colour {}",
+                    "        {}: {} triangles  colour {}{}",
                     Escaped(label),
                     built.mesh.triangle_count(),
-                    fmt_vec(built.material.color)
+                    fmt_vec(built.material.color),
+                    if built.mesh.colors.is_some() {
+                        "  vertex colours"
+                    } else {
+                        ""
+                    }
                 );
             }
         }
@@ -79,6 +95,16 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
         None => outln!("bounds   (empty scene)"),
     }
     Ok(())
+}
+
+/// Whether a model's `parts` have vertex colours, `colored` of them do: "yes", "none", or how
+/// many parts have them.
+fn vertex_colours(colored: usize, parts: usize) -> String {
+    match colored {
+        0 => "none".to_string(),
+        _ if colored == parts => "yes".to_string(),
+        _ => format!("{colored} of {parts} parts"),
+    }
 }
 
 fn fmt_vec(v: glam::Vec3) -> String {

@@ -2,10 +2,11 @@
 
 use glam::{Affine3A, Vec3};
 
-/// Indexed triangles with one unit normal per vertex.
+/// Indexed triangles with one unit normal per vertex, and optionally one colour per vertex.
 ///
-/// Invariants: `normals.len() == positions.len()`; every index is `< positions.len()`;
-/// triangles of closed shapes wind counter-clockwise seen from outside.
+/// Invariants: `normals.len() == positions.len()`, and so does `colors`' when present; every
+/// index is `< positions.len()`; triangles of closed shapes wind counter-clockwise seen from
+/// outside.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Mesh {
     /// Vertex positions, world units.
@@ -14,6 +15,10 @@ pub struct Mesh {
     pub normals: Vec<Vec3>,
     /// Vertex indices of each triangle.
     pub triangles: Vec<[u32; 3]>,
+    /// Linear RGB colour of each vertex (channels finite, ≥ 0), when the model colours its
+    /// vertices: the albedo at a point is the material colour times the colour interpolated
+    /// there. `None` means white everywhere, and keeps the renderers on their paths without it.
+    pub colors: Option<Vec<Vec3>>,
     /// Whether the mesh is flat-shaded: each triangle's three corners carry its face normal, so
     /// the normal at any point of a triangle is the triangle's own (the ray tracer then takes
     /// it from the triangle it hit rather than from `normals`).
@@ -105,10 +110,21 @@ impl Mesh {
         self
     }
 
-    /// Appends `other`'s vertices and triangles.
+    /// Appends `other`'s vertices and triangles. When only one of the two has colours, the
+    /// other's vertices become white.
     pub fn append(&mut self, other: &Mesh) {
         self.flat = other.flat && (self.flat || self.triangles.is_empty());
         let base = self.positions.len() as u32;
+        match (&mut self.colors, &other.colors) {
+            (Some(colors), Some(more)) => colors.extend_from_slice(more),
+            (Some(colors), None) => colors.resize(colors.len() + other.positions.len(), Vec3::ONE),
+            (None, Some(more)) => {
+                let mut colors = vec![Vec3::ONE; self.positions.len()];
+                colors.extend_from_slice(more);
+                self.colors = Some(colors);
+            }
+            (None, None) => {}
+        }
         self.positions.extend_from_slice(&other.positions);
         self.normals.extend_from_slice(&other.normals);
         self.triangles

@@ -1,5 +1,7 @@
 //! Vertex normals: flat (one normal per face, vertices split) or smooth within a crease angle.
 
+use std::collections::HashMap;
+
 use glam::Vec3;
 
 use super::face_list::Mesh;
@@ -21,22 +23,40 @@ pub fn unit_or_zero(v: Vec3) -> Vec3 {
     }
 }
 
-/// Builds a [`Mesh`] from welded `positions` and `triangles`.
+/// Builds a [`Mesh`] from welded `positions` and `triangles`, without colours: see
+/// [`with_colors_and_normals`].
+pub fn with_normals(positions: &[Vec3], triangles: &[[u32; 3]], smooth: bool) -> Mesh {
+    with_colors_and_normals(positions, triangles, None, smooth)
+}
+
+/// Builds a [`Mesh`] from welded `positions` and `triangles`, with `colors` (one per position)
+/// when given.
 ///
 /// Flat: every triangle gets its own three vertices carrying the face normal.
 /// Smooth: each corner's normal is the area-weighted sum of the normals of the faces around that
-/// vertex that meet its own face at less than [`CREASE_ANGLE_DEGREES`]; corners that end with the
-/// same normal share one vertex. Degenerate faces (zero area) take the normal of a neighbour or +Y.
-pub fn with_normals(positions: &[Vec3], triangles: &[[u32; 3]], smooth: bool) -> Mesh {
+/// vertex that meet its own face at less than [`CREASE_ANGLE_DEGREES`]; corners of one position
+/// that end with the same normal share one vertex. Degenerate faces (zero area) take the normal
+/// of a neighbour or +Y.
+///
+/// Each output vertex keeps its position's colour. With colours, a model may hold one point
+/// several times, once per colour (a seam between two colours): those entries are never merged,
+/// but the faces around all of them count for each one's normal, so a colour seam is no crease.
+pub fn with_colors_and_normals(
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    colors: Option<&[Vec3]>,
+    smooth: bool,
+) -> Mesh {
+    debug_assert!(colors.is_none_or(|c| c.len() == positions.len()));
     if !smooth {
-        return flat_normals(positions, triangles);
+        return flat_normals(positions, triangles, colors);
     }
     let weighted: Vec<Vec3> = triangles
         .iter()
         .map(|&t| area_weighted_normal(positions, t))
         .collect();
     let unit: Vec<Vec3> = weighted.iter().map(|&n| unit_or_zero(n)).collect();
-    smooth_normals(positions, triangles, &weighted, &unit)
+    smooth_normals(positions, triangles, colors, &weighted, &unit)
 }
 
 /// The face normal of triangle `[a, b, c]` weighted by its area: the edges' cross product,
@@ -51,12 +71,13 @@ fn area_weighted_normal(positions: &[Vec3], [a, b, c]: [u32; 3]) -> Vec3 {
 }
 
 /// Three vertices a triangle, each with the face's unit normal (computed as it goes: no
-/// per-triangle array beside the mesh being built).
-fn flat_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Mesh {
+/// per-triangle array beside the mesh being built) and its position's colour.
+fn flat_normals(positions: &[Vec3], triangles: &[[u32; 3]], colors: Option<&[Vec3]>) -> Mesh {
     let mut mesh = Mesh {
         positions: Vec::with_capacity(triangles.len() * 3),
         normals: Vec::with_capacity(triangles.len() * 3),
         triangles: Vec::with_capacity(triangles.len()),
+        colors: colors.map(|_| Vec::with_capacity(triangles.len() * 3)),
         flat: true,
     };
     for tri in triangles {
@@ -67,23 +88,43 @@ fn flat_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Mesh {
             mesh.positions.push(positions[i as usize]);
             mesh.normals.push(n);
         }
+        if let (Some(out), Some(colors)) = (&mut mesh.colors, colors) {
+            out.extend(tri.map(|i| colors[i as usize]));
+        }
         mesh.triangles.push([base, base + 1, base + 2]);
     }
     mesh
 }
 
+/// The first index of each position's bit-identical point: what the faces around a vertex are
+/// gathered by when colours split one point into several entries.
+fn points(positions: &[Vec3]) -> Vec<u32> {
+    let mut first: HashMap<[u32; 3], u32> = HashMap::with_capacity(positions.len());
+    (0..positions.len() as u32)
+        .map(|v| {
+            *first
+                .entry(positions[v as usize].to_array().map(f32::to_bits))
+                .or_insert(v)
+        })
+        .collect()
+}
+
 fn smooth_normals(
     positions: &[Vec3],
     triangles: &[[u32; 3]],
+    colors: Option<&[Vec3]>,
     weighted: &[Vec3],
     unit: &[Vec3],
 ) -> Mesh {
     let cos_crease = CREASE_ANGLE_DEGREES.to_radians().cos();
-    // Faces around each vertex, as compressed rows: faces_of[start[v]..start[v + 1]].
+    // Without colours, positions are welded already: each is its own point.
+    let point_of = colors.map(|_| points(positions));
+    let point = |v: u32| point_of.as_ref().map_or(v, |p| p[v as usize]) as usize;
+    // Faces around each point, as compressed rows: faces_of[start[p]..start[p + 1]].
     let mut start = vec![0u32; positions.len() + 1];
     for tri in triangles {
         for &v in tri {
-            start[v as usize + 1] += 1;
+            start[point(v) + 1] += 1;
         }
     }
     for v in 0..positions.len() {
@@ -93,8 +134,8 @@ fn smooth_normals(
     let mut faces_of = vec![0u32; triangles.len() * 3];
     for (t, tri) in triangles.iter().enumerate() {
         for &v in tri {
-            faces_of[fill[v as usize] as usize] = t as u32;
-            fill[v as usize] += 1;
+            faces_of[fill[point(v)] as usize] = t as u32;
+            fill[point(v)] += 1;
         }
     }
 
@@ -102,6 +143,7 @@ fn smooth_normals(
         positions: Vec::with_capacity(positions.len()),
         normals: Vec::with_capacity(positions.len()),
         triangles: Vec::with_capacity(triangles.len()),
+        colors: colors.map(|_| Vec::with_capacity(positions.len())),
         flat: false,
     };
     // The output vertices made for each welded vertex, as chains: `first_made[v]` is the first
@@ -113,7 +155,8 @@ fn smooth_normals(
     for (t, tri) in triangles.iter().enumerate() {
         let mut out = [0u32; 3];
         for (corner, &v) in tri.iter().enumerate() {
-            let around = &faces_of[start[v as usize] as usize..start[v as usize + 1] as usize];
+            let p = point(v);
+            let around = &faces_of[start[p] as usize..start[p + 1] as usize];
             let mut sum = Vec3::ZERO;
             for &g in around {
                 if unit[t] == Vec3::ZERO || unit[g as usize].dot(unit[t]) >= cos_crease {
@@ -138,6 +181,9 @@ fn smooth_normals(
                 made = mesh.positions.len() as u32;
                 mesh.positions.push(positions[v as usize]);
                 mesh.normals.push(n);
+                if let (Some(out), Some(colors)) = (&mut mesh.colors, colors) {
+                    out.push(colors[v as usize]);
+                }
                 next_made.push(NONE);
                 match last {
                     NONE => first_made[v as usize] = made,

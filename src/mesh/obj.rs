@@ -1,7 +1,13 @@
 //! OBJ import: the statements rastray draws (`v`, `vn`, `f`) read line by line as the file
 //! streams in, polygons fan-triangulated, every group merged into one face list. Nothing else
 //! of the file is kept, so loading takes about the memory of the result: 12 bytes a vertex and
-//! 12 a triangle (36 more a triangle when the file gives normals everywhere).
+//! 12 a triangle (36 more a triangle when the file gives normals everywhere, 12 more a vertex
+//! when it colours every vertex).
+//!
+//! Vertex colours follow the common extension `v x y z r g b`: three numbers in 0..1 after the
+//! position, sRGB-encoded as image colours are (values outside 0..1 are clamped), decoded to
+//! linear light. They are kept only when every vertex has one; a `v x y z w` (four numbers) has
+//! none.
 
 use std::io::{BufRead, BufReader};
 use std::path::Path;
@@ -11,6 +17,7 @@ use glam::Vec3;
 use super::geometry::ModelGeometry;
 use super::normals::unit_or_zero;
 use super::obj_error::{ObjError, ObjProblem};
+use super::srgb::srgb_to_linear;
 use crate::input_file::{MAX_MODEL_BYTES, open_bounded, read_bounded};
 use crate::scene::limits::COORDINATE;
 
@@ -84,6 +91,10 @@ struct Statements {
     positions: Vec<Vec3>,
     /// Unit normals (zero for a zero normal), as `vn` statements give them.
     normals: Vec<Vec3>,
+    /// The linear colour of each vertex, while every vertex so far has one.
+    colors: Vec<Vec3>,
+    /// Whether some vertex has no colour.
+    vertex_without_color: bool,
     triangles: Vec<[u32; 3]>,
     /// The normal index of each triangle corner, while every corner so far has one.
     normal_corners: Vec<[u32; 3]>,
@@ -118,6 +129,14 @@ impl Statements {
                     });
                 }
                 self.positions.push(Vec3::from_array(p));
+                match (vertex_color(&mut words), self.vertex_without_color) {
+                    (_, true) => {}
+                    (Some(color), false) => self.colors.push(color),
+                    (None, false) => {
+                        self.vertex_without_color = true;
+                        self.colors = Vec::new();
+                    }
+                }
             }
             Some("vn") => {
                 let n = three_numbers(&mut words).ok_or(ObjProblem::Malformed(
@@ -197,13 +216,20 @@ impl Statements {
         for &i in triangles.iter().flatten() {
             new_index[i as usize] = 0;
         }
-        let mut positions = Vec::with_capacity(new_index.iter().filter(|&&i| i == 0).count());
-        for (slot, &p) in new_index.iter_mut().zip(&self.positions) {
+        let used = new_index.iter().filter(|&&i| i == 0).count();
+        let mut positions = Vec::with_capacity(used);
+        let given = !self.vertex_without_color && self.colors.len() == self.positions.len();
+        let mut colors = given.then(|| Vec::with_capacity(used));
+        for (k, (slot, &p)) in new_index.iter_mut().zip(&self.positions).enumerate() {
             if *slot == 0 {
                 *slot = positions.len() as u32;
                 positions.push(p);
+                if let Some(colors) = &mut colors {
+                    colors.push(self.colors[k]);
+                }
             }
         }
+        drop(self.colors);
         drop(self.positions);
         for i in triangles.iter_mut().flatten() {
             *i = new_index[*i as usize];
@@ -228,7 +254,7 @@ impl Statements {
             positions,
             triangles,
             corner_normals,
-            colors: None,
+            colors,
             corner_uvs: None,
         })
     }
@@ -243,6 +269,18 @@ fn resolve(i: i64, count: usize) -> u32 {
         .ok()
         .filter(|&r| r != NONE)
         .unwrap_or(NONE)
+}
+
+/// The vertex colour that ends a `v` statement, `r g b` after the position: exactly three
+/// finite numbers, read as sRGB in 0..1 (clamped) and decoded to linear. `None` otherwise.
+fn vertex_color(words: &mut std::str::SplitWhitespace<'_>) -> Option<Vec3> {
+    let rgb = three_numbers(words)?;
+    if words.next().is_some() || !rgb.iter().all(|c| c.is_finite()) {
+        return None;
+    }
+    Some(Vec3::from_array(
+        rgb.map(|c| srgb_to_linear(c.clamp(0.0, 1.0))),
+    ))
 }
 
 /// The next three words as numbers; `None` when they are fewer or not numbers.

@@ -8,7 +8,7 @@ use super::cuboid::cuboid;
 use super::face_list::Mesh;
 use super::geometry::ModelGeometry;
 use super::icosahedron::icosahedron;
-use super::normals::with_normals;
+use super::normals::{with_colors_and_normals, with_normals};
 use super::prism::prism;
 use crate::scene::{Object, Shape};
 
@@ -56,6 +56,7 @@ pub fn tessellate(object: &Object, obj: Option<&ModelGeometry>) -> Mesh {
 /// file's `centre` (the centre of the whole file's bounds, in its own space) sits at the object's
 /// position, scaled by its `scale` and turned by its rotation. Normals come from the file when
 /// it gives them and the object is smooth, otherwise from the faces within the crease angle.
+/// The file's vertex colours, when it has them, stay with their vertices.
 ///
 /// # Panics
 /// If `object` is not a mesh object (a caller bug).
@@ -68,16 +69,29 @@ pub fn tessellate_part(object: &Object, geometry: &ModelGeometry, centre: Vec3) 
         .iter()
         .map(|&p| (p - centre) * *scale)
         .collect();
+    let colors = geometry.colors.as_deref();
     let local = match (&geometry.corner_normals, object.smooth) {
-        (Some(normals), true) => with_file_normals(&positions, &geometry.triangles, normals),
-        _ => with_normals(&positions, &geometry.triangles, object.smooth),
+        (Some(normals), true) => {
+            with_file_normals(&positions, &geometry.triangles, normals, colors)
+        }
+        _ => with_colors_and_normals(&positions, &geometry.triangles, colors, object.smooth),
     };
     local.transformed(object_transform(object))
 }
 
-/// A mesh using the file's own corner normals; corners with equal position and normal share a vertex.
-fn with_file_normals(positions: &[Vec3], triangles: &[[u32; 3]], normals: &[[Vec3; 3]]) -> Mesh {
-    let mut mesh = Mesh::default();
+/// A mesh using the file's own corner normals, and `colors` (one per position) when given;
+/// corners with equal position index and normal share a vertex (a position index holds one
+/// colour, so corners of different colours never do).
+fn with_file_normals(
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    normals: &[[Vec3; 3]],
+    colors: Option<&[Vec3]>,
+) -> Mesh {
+    let mut mesh = Mesh {
+        colors: colors.map(|_| Vec::new()),
+        ..Mesh::default()
+    };
     let mut index: HashMap<(u32, [u32; 3]), u32> = HashMap::with_capacity(positions.len());
     for (tri, corner_normals) in triangles.iter().zip(normals) {
         let mut out = [0u32; 3];
@@ -87,6 +101,9 @@ fn with_file_normals(positions: &[Vec3], triangles: &[[u32; 3]], normals: &[[Vec
             out[k] = *index.entry(key).or_insert_with(|| {
                 mesh.positions.push(positions[tri[k] as usize]);
                 mesh.normals.push(n);
+                if let (Some(out), Some(colors)) = (&mut mesh.colors, colors) {
+                    out.push(colors[tri[k] as usize]);
+                }
                 mesh.positions.len() as u32 - 1
             });
         }

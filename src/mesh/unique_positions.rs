@@ -115,6 +115,7 @@ mod tests {
             positions: vec![Vec3::ZERO, Vec3::new(-0.0, 0.0, 0.0), Vec3::X, Vec3::ZERO],
             normals: vec![Vec3::Z; 4],
             triangles: vec![[0, 1, 2], [3, 2, 1]],
+            colors: None,
             flat: false,
         };
         let unique = UniquePositions::of(&mesh);

@@ -6,6 +6,8 @@ use std::ops::{AddAssign, Mul};
 use glam::Vec3;
 use rayon::prelude::*;
 
+use crate::mesh::srgb_to_linear;
+
 /// A `width`×`height` image of linear RGB, row-major from the top-left pixel, with coverage
 /// when the render was asked for it.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -124,7 +126,8 @@ pub fn decode_srgb16(code: u16) -> f32 {
     srgb_to_linear(code as f32 / 65535.0)
 }
 
-/// The sRGB transfer function: linear [0, 1] (clamped) to encoded [0, 1].
+/// The sRGB transfer function: linear [0, 1] (clamped) to encoded [0, 1]; the inverse of
+/// [`srgb_to_linear`].
 #[inline]
 fn srgb_curve(linear: f32) -> f32 {
     let c = linear.clamp(0.0, 1.0);
@@ -132,15 +135,5 @@ fn srgb_curve(linear: f32) -> f32 {
         12.92 * c
     } else {
         1.055 * c.powf(1.0 / 2.4) - 0.055
-    }
-}
-
-/// The inverse of [`srgb_curve`]: encoded [0, 1] to linear [0, 1].
-#[inline]
-fn srgb_to_linear(s: f32) -> f32 {
-    if s <= 0.04045 {
-        s / 12.92
-    } else {
-        ((s + 0.055) / 1.055).powf(2.4)
     }
 }

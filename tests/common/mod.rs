@@ -34,6 +34,18 @@ pub fn draw(scene: &Scene, algorithm: Algorithm, width: u32, height: u32) -> Fra
     render(&world(scene), &scene.camera, options).0
 }
 
+/// PSNR in dB of two 8-bit images of the same size (infinite when identical).
+pub fn psnr(a: &[u8], b: &[u8]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let mse = a
+        .iter()
+        .zip(b)
+        .map(|(&x, &y)| (x as f64 - y as f64).powi(2))
+        .sum::<f64>()
+        / a.len() as f64;
+    10.0 * (255.0f64 * 255.0 / mse).log10()
+}
+
 /// The default scene file shipped in scenes/.
 pub fn default_scene() -> Scene {
     rastray::scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/default.toml"))

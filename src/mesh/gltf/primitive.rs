@@ -24,6 +24,8 @@ pub enum PrimitiveRead {
 /// Reads `primitive` (named `label` in messages) from `buffers` and moves it by `transform`,
 /// the node's model-space matrix. Triangle strips and fans become triangle lists; a transform
 /// that mirrors (negative determinant) has its triangles' winding reversed, so fronts stay fronts.
+/// Vertex colours come from `COLOR_0` (RGB or RGBA, float or normalized 8- or 16-bit; linear,
+/// as the specification says; alpha is not drawn).
 pub fn read_primitive(
     primitive: &Primitive,
     label: &str,
@@ -88,6 +90,27 @@ pub fn read_primitive(
             ));
         }
     }
+    let color_accessor = primitive.get(&Semantic::Colors(0));
+    if let Some(accessor) = &color_accessor {
+        let dimensions = match accessor.dimensions() {
+            Dimensions::Vec4 => Dimensions::Vec4,
+            _ => Dimensions::Vec3,
+        };
+        let types = [DataType::F32, DataType::U8, DataType::U16];
+        check_accessor(accessor, &types, dimensions, buffers)
+            .map_err(|reason| accessor_error(accessor, "COLOR_0", reason))?;
+        if accessor.count() != position_accessor.count() {
+            return Err(accessor_error(
+                accessor,
+                "COLOR_0",
+                format!(
+                    "{} colours for {} positions",
+                    accessor.count(),
+                    position_accessor.count()
+                ),
+            ));
+        }
+    }
     if let Some(accessor) = primitive.indices() {
         check_accessor(
             &accessor,
@@ -115,6 +138,30 @@ pub fn read_primitive(
                 .map(Vec3::from)
                 .collect(),
         ),
+        None => None,
+    };
+    let colors: Option<Vec<Vec3>> = match &color_accessor {
+        Some(accessor) => {
+            let colors: Vec<Vec3> = reader
+                .read_colors(0)
+                .ok_or_else(|| unread(accessor, "COLOR_0"))?
+                .into_rgb_f32()
+                .map(Vec3::from)
+                .collect();
+            if colors.iter().any(|c| !c.is_finite()) {
+                return Err(accessor_error(
+                    accessor,
+                    "COLOR_0",
+                    "a colour is not a finite number".into(),
+                ));
+            }
+            Some(
+                colors
+                    .iter()
+                    .map(|c| c.clamp(Vec3::ZERO, Vec3::ONE))
+                    .collect(),
+            )
+        }
         None => None,
     };
     let order: Vec<u32> = match primitive.indices() {
@@ -154,6 +201,7 @@ pub fn read_primitive(
         &positions,
         &triangles,
         normals.as_deref(),
+        colors.as_deref(),
     )))
 }
 
@@ -221,18 +269,31 @@ fn transform_normals(normals: &[Vec3], linear: Mat3) -> Option<Vec<Vec3>> {
 
 /// Merges vertices at bit-identical positions, so that computed normals smooth across the seams
 /// glTF exporters split vertices at; the file's normals, when given, stay with each corner.
-fn weld(positions: &[Vec3], triangles: &[[u32; 3]], normals: Option<&[Vec3]>) -> ModelGeometry {
+/// With `colors`, vertices merge only where their colours are bit-identical too: a seam between
+/// two colours stays split (and [`crate::mesh::with_colors_and_normals`] still smooths across it).
+fn weld(
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    normals: Option<&[Vec3]>,
+    colors: Option<&[Vec3]>,
+) -> ModelGeometry {
     let mut welded: Vec<Vec3> = Vec::with_capacity(positions.len());
-    let mut index_of: HashMap<[u32; 3], u32> = HashMap::with_capacity(positions.len());
-    let remap: Vec<u32> = positions
-        .iter()
-        .map(|p| {
-            *index_of
-                .entry(p.to_array().map(f32::to_bits))
-                .or_insert_with(|| {
-                    welded.push(*p);
-                    welded.len() as u32 - 1
-                })
+    let mut welded_colors = colors.map(|_| Vec::with_capacity(positions.len()));
+    let mut index_of: HashMap<[u32; 6], u32> = HashMap::with_capacity(positions.len());
+    let remap: Vec<u32> = (0..positions.len())
+        .map(|i| {
+            let p = positions[i];
+            let color = colors.map_or(Vec3::ZERO, |c| c[i]);
+            let mut key = [0; 6];
+            key[..3].copy_from_slice(&p.to_array().map(f32::to_bits));
+            key[3..].copy_from_slice(&color.to_array().map(f32::to_bits));
+            *index_of.entry(key).or_insert_with(|| {
+                welded.push(p);
+                if let Some(out) = &mut welded_colors {
+                    out.push(color);
+                }
+                welded.len() as u32 - 1
+            })
         })
         .collect();
     ModelGeometry {
@@ -247,7 +308,7 @@ fn weld(positions: &[Vec3], triangles: &[[u32; 3]], normals: Option<&[Vec3]>) ->
                 .map(|t| t.map(|i| normals[i as usize]))
                 .collect()
         }),
-        colors: None,
+        colors: welded_colors,
         corner_uvs: None,
     }
 }
@@ -275,11 +336,28 @@ mod tests {
     fn welding_merges_equal_positions_and_keeps_corner_normals() {
         let positions = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::X, Vec3::Y, Vec3::ONE];
         let normals = [Vec3::Z, Vec3::Z, Vec3::Z, Vec3::X, Vec3::X, Vec3::X];
-        let geometry = weld(&positions, &[[0, 1, 2], [3, 5, 4]], Some(&normals));
+        let geometry = weld(&positions, &[[0, 1, 2], [3, 5, 4]], Some(&normals), None);
         assert_eq!(geometry.positions.len(), 4);
         assert_eq!(geometry.triangles, vec![[0, 1, 2], [1, 3, 2]]);
         let corners = geometry.corner_normals.expect("normals");
         assert_eq!(corners[1], [Vec3::X; 3]);
+    }
+
+    #[test]
+    fn welding_keeps_a_seam_between_two_colours_split() {
+        // Two triangles share the edge X–Y; the second colours it blue where the first has it
+        // red: the shared positions must stay two vertices each, and the red ones merge.
+        let positions = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::X, Vec3::Y, Vec3::ONE];
+        let (red, blue) = (Vec3::X, Vec3::Z);
+        let colors = [red, red, red, blue, blue, blue];
+        let geometry = weld(&positions, &[[0, 1, 2], [3, 5, 4]], None, Some(&colors));
+        assert_eq!(geometry.positions.len(), 6);
+        assert_eq!(geometry.colors.as_deref(), Some(&colors[..]));
+        let same = [red, red, red, red, red, blue];
+        let geometry = weld(&positions, &[[0, 1, 2], [3, 5, 4]], None, Some(&same));
+        assert_eq!(geometry.positions.len(), 4);
+        assert_eq!(geometry.triangles, vec![[0, 1, 2], [1, 3, 2]]);
+        assert_eq!(geometry.colors, Some(vec![red, red, red, blue]));
     }
 
     #[test]

@@ -12,10 +12,10 @@ use glam::{Vec3, Vec4};
 
 use crate::render::simd::{Lanes8, V3, WIDTH};
 
-/// Up to [`WIDTH`] covered pixels of one row, in lanes `L`. Lanes past `count` repeat the last
-/// pixel.
+/// Up to [`WIDTH`] covered pixels of one row, in lanes `L`, with `K` varyings. Lanes past
+/// `count` repeat the last pixel.
 #[derive(Clone, Copy)]
-pub struct Fragments<L> {
+pub struct Fragments<L, const K: usize = 1> {
     /// Row within the view (0 = top).
     pub y: u32,
     /// Number of lanes that are pixels, 1..=[`WIDTH`].
@@ -26,8 +26,8 @@ pub struct Fragments<L> {
     pub object: [u32; WIDTH],
     /// Depth w of the surface along the view direction, world units (> 0).
     pub depth: L,
-    /// The perspective-correct varying.
-    pub varying: V3<L>,
+    /// The perspective-correct varyings.
+    pub varying: [V3<L>; K],
 }
 
 /// (0, 1, …, 7).
@@ -36,39 +36,54 @@ fn lane_numbers<L: Lanes8>() -> L {
     L::from_array(std::array::from_fn(|k| k as f32))
 }
 
-impl<L: Lanes8> Fragments<L> {
+impl<L: Lanes8, const K: usize> Fragments<L, K> {
     /// Pixels `k .. k + WIDTH` of `run`, in row `y`.
     #[inline(always)]
-    pub fn span(y: u32, run: &Run, k: usize) -> Fragments<L> {
+    pub fn span(y: u32, run: &Run<K>, k: usize) -> Fragments<L, K> {
         let steps = L::splat(k as f32) + lane_numbers();
-        let plane = |c: usize| L::splat(run.at_start[c]) + L::splat(run.per_x[c]) * steps;
+        // Loops rather than closures over arrays, as the one-varying code had: the arithmetic
+        // stays in the caller's AVX context.
+        let mut values = [[L::splat(0.0); 4]; K];
+        for (v, varying) in values.iter_mut().enumerate() {
+            // The fourth component is 1/w for the first varying and unused for the others.
+            let components = if v == 0 { 4 } else { 3 };
+            for (c, value) in varying.iter_mut().take(components).enumerate() {
+                *value = L::splat(run.at_start[v][c]) + L::splat(run.per_x[v][c]) * steps;
+            }
+        }
         let first = (run.start + k) as u32;
         Fragments::from_interpolants(
             y,
             WIDTH,
             std::array::from_fn(|lane| first + lane as u32),
             [run.object; WIDTH],
-            [plane(0), plane(1), plane(2), plane(3)],
+            values,
         )
     }
 
-    /// Divides the interpolants by 1/w: the depth and perspective-correct varying.
+    /// Divides the interpolants by 1/w (the fourth of the first varying's): the depth and
+    /// perspective-correct varyings.
     #[inline(always)]
     fn from_interpolants(
         y: u32,
         count: usize,
         x: [u32; WIDTH],
         object: [u32; WIDTH],
-        [vx, vy, vz, inv_w]: [L; 4],
-    ) -> Fragments<L> {
-        let depth = L::splat(1.0) / inv_w;
+        values: [[L; 4]; K],
+    ) -> Fragments<L, K> {
+        let depth = L::splat(1.0) / values[0][3];
+        let zero = L::splat(0.0);
+        let mut varying = [V3::new(zero, zero, zero); K];
+        for (out, [vx, vy, vz, _]) in varying.iter_mut().zip(values) {
+            *out = V3::new(vx * depth, vy * depth, vz * depth);
+        }
         Fragments {
             y,
             count,
             x,
             object,
             depth,
-            varying: V3::new(vx * depth, vy * depth, vz * depth),
+            varying,
         }
     }
 
@@ -97,17 +112,18 @@ impl<L: Lanes8> Fragments<L> {
 }
 
 /// A run of pixels of one row drawn by one triangle: pixel k of it (column `start + k`) has the
-/// interpolants (varying·1/w, 1/w) `at_start + per_x·k`, however it is batched.
+/// interpolants (varying·1/w, 1/w) of each of its `K` varyings `at_start + per_x·k`, however it
+/// is batched.
 #[derive(Debug, Clone, Copy)]
-pub struct Run {
+pub struct Run<const K: usize = 1> {
     /// Column of the run's first pixel.
     pub start: usize,
     /// Object index in the world of the triangle.
     pub object: u32,
     /// The interpolants at the run's first pixel.
-    pub at_start: Vec4,
+    pub at_start: [Vec4; K],
     /// Their change per pixel.
-    pub per_x: Vec4,
+    pub per_x: [Vec4; K],
 }
 
 /// 2^23: the f32 from which the integers are one apart.
@@ -124,30 +140,31 @@ const TWO_TO_23: f32 = 8_388_608.0;
 ///
 /// Invariant: lanes from `count` on repeat the last pixel pushed (once one was pushed).
 #[derive(Clone, Copy)]
-pub struct Packer<L> {
+pub struct Packer<L, const K: usize = 1> {
     /// Lanes that are pixels, 0..[`WIDTH`].
     count: usize,
     /// Column of each lane, an exact integer.
     x: L,
     /// Object index of each lane, an exact integer.
     object: L,
-    /// Interpolants (varying·1/w, 1/w) of each lane, component by component.
-    values: [L; 4],
+    /// Interpolants (varying·1/w, 1/w) of each lane, varying by varying, component by
+    /// component (the fourth component of varyings past the first is unused: zero).
+    values: [[L; 4]; K],
 }
 
-impl<L: Lanes8> Default for Packer<L> {
+impl<L: Lanes8, const K: usize> Default for Packer<L, K> {
     fn default() -> Self {
         let zero = L::splat(0.0);
         Packer {
             count: 0,
             x: zero,
             object: zero,
-            values: [zero; 4],
+            values: [[zero; 4]; K],
         }
     }
 }
 
-impl<L: Lanes8> Packer<L> {
+impl<L: Lanes8, const K: usize> Packer<L, K> {
     /// Adds pixels `first..first + len` (`len` 1..=[`WIDTH`]) of `run`, in row `y`, computed as
     /// [`Fragments::span`] computes them. Returns the first eight fragments once there are
     /// eight.
@@ -155,10 +172,10 @@ impl<L: Lanes8> Packer<L> {
     pub fn push_run(
         &mut self,
         y: u32,
-        run: &Run,
+        run: &Run<K>,
         first: usize,
         len: usize,
-    ) -> Option<Fragments<L>> {
+    ) -> Option<Fragments<L, K>> {
         debug_assert!((1..=WIDTH).contains(&len));
         let filled = self.count;
         // Lane `filled + j` takes pixel `first + j`; the lanes past the run repeat its last pixel.
@@ -182,14 +199,18 @@ impl<L: Lanes8> Packer<L> {
     /// + j`, is an exact integer in f32, so each lane computes `at_start + per_x·k` as
     /// [`Fragments::span`] does.
     #[inline(always)]
-    fn fill_from(&mut self, lane: isize, run: &Run, first: usize, len: usize) {
+    fn fill_from(&mut self, lane: isize, run: &Run<K>, first: usize, len: usize) {
         let lanes = lane_numbers::<L>();
         let last = L::splat((lane + len as isize - 1) as f32);
         let steps = lanes.min(last) + L::splat((first as isize - lane) as f32);
         let kept = lanes.lt(L::splat(lane as f32));
-        for (c, values) in self.values.iter_mut().enumerate() {
-            let fresh = L::splat(run.at_start[c]) + L::splat(run.per_x[c]) * steps;
-            *values = L::select(kept, *values, fresh);
+        for (v, varying) in self.values.iter_mut().enumerate() {
+            // 1/w is the fourth component of the first varying alone.
+            let components = if v == 0 { 4 } else { 3 };
+            for (c, values) in varying.iter_mut().take(components).enumerate() {
+                let fresh = L::splat(run.at_start[v][c]) + L::splat(run.per_x[v][c]) * steps;
+                *values = L::select(kept, *values, fresh);
+            }
         }
         self.x = L::select(kept, self.x, L::splat(run.start as f32) + steps);
         self.object = L::select(kept, self.object, L::splat(run.object as f32));
@@ -198,14 +219,14 @@ impl<L: Lanes8> Packer<L> {
     /// The fragments collected so far, as lanes of row `y`; `None` when there are none. Empties
     /// the packer.
     #[inline(always)]
-    pub fn take(&mut self, y: u32) -> Option<Fragments<L>> {
+    pub fn take(&mut self, y: u32) -> Option<Fragments<L, K>> {
         let count = std::mem::take(&mut self.count);
         (count > 0).then(|| self.fragments(y, count))
     }
 
     /// The lanes as fragments of row `y`, `count` of them pixels.
     #[inline(always)]
-    fn fragments(&self, y: u32, count: usize) -> Fragments<L> {
+    fn fragments(&self, y: u32, count: usize) -> Fragments<L, K> {
         // x + 2^23 holds the integer x in its low mantissa bits for x in [0, 2^23): a lane-wise
         // add and subtract where `as u32` would take a saturating conversion per lane.
         let integers = |lanes: L| {
@@ -238,8 +259,8 @@ mod tests {
         let run = |start, object| Run {
             start,
             object,
-            at_start,
-            per_x,
+            at_start: [at_start],
+            per_x: [per_x],
         };
         let span = Fragments::<F32x8>::span(5, &run(100, 2), 8);
         let mut packer = Packer::<F32x8>::default();
@@ -250,13 +271,13 @@ mod tests {
         assert_eq!(span.x, packed.x);
         assert_eq!((span.count, packed.count), (WIDTH, WIDTH));
         assert_eq!(span.depth.to_array(), packed.depth.to_array());
-        assert_eq!(span.varying.to_vec3s(), packed.varying.to_vec3s());
+        assert_eq!(span.varying[0].to_vec3s(), packed.varying[0].to_vec3s());
         // Each lane is the one-pixel sum `start + per_x·k`, divided by its 1/w.
         for (lane, (depth, varying)) in packed
             .depth
             .to_array()
             .into_iter()
-            .zip(packed.varying.to_vec3s())
+            .zip(packed.varying[0].to_vec3s())
             .enumerate()
         {
             let one = at_start + per_x * (8 + lane) as f32;
@@ -272,5 +293,46 @@ mod tests {
         let rest = packer.take(7).expect("two fragments");
         assert_eq!((rest.count, rest.x), (2, [54, 55, 55, 55, 55, 55, 55, 55]));
         assert!(packer.take(7).is_none(), "take empties the packer");
+    }
+
+    #[test]
+    fn every_varying_is_interpolated_as_the_first_and_shares_its_depth() {
+        // With three varyings, each is `start + per_x·k` divided by the first's 1/w, whether
+        // the pixel comes in a span or packed; the unused fourth components change nothing.
+        let at_start = [
+            Vec4::new(0.3, -0.7, 0.11, 0.25),
+            Vec4::new(0.9, 0.2, -0.4, 0.0),
+            Vec4::new(-0.1, 0.5, 0.6, 0.0),
+        ];
+        let per_x = [
+            Vec4::new(1.0e-3, -3.0e-4, 7.0e-5, -1.0e-5),
+            Vec4::new(-2.0e-3, 5.0e-4, 1.0e-4, 0.0),
+            Vec4::new(4.0e-4, 0.0, -6.0e-4, 0.0),
+        ];
+        let run = Run {
+            start: 10,
+            object: 0,
+            at_start,
+            per_x,
+        };
+        let span = Fragments::<F32x8, 3>::span(2, &run, 8);
+        let mut packer = Packer::<F32x8, 3>::default();
+        assert!(packer.push_run(2, &run, 8, 5).is_none());
+        let packed = packer.push_run(2, &run, 13, 3).expect("eight fragments");
+        assert_eq!(span.depth.to_array(), packed.depth.to_array());
+        for v in 0..3 {
+            assert_eq!(span.varying[v].to_vec3s(), packed.varying[v].to_vec3s());
+            for (lane, (depth, varying)) in span
+                .depth
+                .to_array()
+                .into_iter()
+                .zip(span.varying[v].to_vec3s())
+                .enumerate()
+            {
+                let k = (8 + lane) as f32;
+                assert_eq!(depth, 1.0 / (at_start[0] + per_x[0] * k).w);
+                assert_eq!(varying, (at_start[v] + per_x[v] * k).truncate() * depth);
+            }
+        }
     }
 }

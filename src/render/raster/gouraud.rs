@@ -1,4 +1,6 @@
-//! Z-buffer with Gouraud shading: light the vertices, interpolate the colour.
+//! Z-buffer with Gouraud shading: light the vertices, interpolate the colour. Where some mesh
+//! has vertex colours, the lit parts and the colour are interpolated apart instead
+//! (`gouraud_parts`); a world without them is drawn here alone.
 //!
 //! Only vertices of triangles that a band shows are lit: at the editor's preview size most
 //! triangles of a real mesh cover no pixel centre, and of those that do, about half are hidden
@@ -8,6 +10,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::gouraud_parts::{LitParts, SeparateSpecular};
 use super::setup::RasterScratch;
 use super::shader::VaryingColor;
 use super::varying::Varying;
@@ -33,6 +36,11 @@ pub fn render_gouraud(
         geometry,
         per_vertex,
     } = scratch;
+    if world.objects.iter().any(|o| o.mesh.colors.is_some()) {
+        let mut parts = LitParts::new(world, view.eye, per_vertex);
+        let shader = SeparateSpecular::new(world);
+        return draw::<3>(geometry, world, view, progress, &mut parts, &shader, out);
+    }
     let mut colors = LitVertices {
         world,
         eye: view.eye,
@@ -42,7 +50,7 @@ pub fn render_gouraud(
         lit_whole: vec![false; world.objects.len()],
     };
     // Fragment stage: the interpolated colour is the pixel's colour.
-    draw(
+    draw::<1>(
         geometry,
         world,
         view,
@@ -79,32 +87,19 @@ impl LitVertices<'_> {
 
 impl Varying for LitVertices<'_> {
     fn prepare(&mut self, triangles_needed: &[usize]) {
-        let lit: Vec<bool> = self
-            .world
-            .objects
-            .iter()
-            .zip(triangles_needed)
-            .map(|(o, &needed)| 3 * needed >= o.mesh.positions.len())
-            .collect();
+        let lit = objects_lit_whole(self.world, triangles_needed);
         let mut whole = std::mem::take(&mut *self.whole);
-        whole.resize_with(self.world.objects.len(), Vec::new);
         let this = &*self;
-        whole
-            .par_iter_mut()
-            .zip(&self.world.objects)
-            .enumerate()
-            .zip(&lit)
-            .filter(|(_, lit)| **lit)
-            .for_each(|((object, (colors, o)), _)| {
-                colors.clear();
-                colors.reserve(o.mesh.positions.len());
-                run_on_best_lanes(LightAll {
-                    lit: this,
-                    object,
-                    mesh: &o.mesh,
-                    colors,
-                });
+        light_whole(self.world, &lit, &mut whole, |object, mesh, colors| {
+            colors.clear();
+            colors.reserve(mesh.positions.len());
+            run_on_best_lanes(LightAll {
+                lit: this,
+                object,
+                mesh,
+                colors,
             });
+        });
         *self.whole = whole;
         self.lit_whole = lit;
     }
@@ -187,26 +182,65 @@ impl LanesJob for LightCorners<'_> {
             .flat_map(|&t| mesh.triangles[t as usize])
             .map(|i| i as usize);
         for colors in self.colors.chunks_mut(WIDTH) {
-            let mut ids = [0; WIDTH];
-            for id in &mut ids[..colors.len()] {
-                *id = vertices.next().expect("three vertices per triangle");
-            }
-            // Lanes past the last vertex repeat it.
-            for k in colors.len()..WIDTH {
-                ids[k] = ids[colors.len() - 1];
-            }
-            let gather = |values: &[Vec3]| {
-                let v = ids.map(|i| values[i]);
-                V3::new(
-                    L::from_array(v.map(|v| v.x)),
-                    L::from_array(v.map(|v| v.y)),
-                    L::from_array(v.map(|v| v.z)),
-                )
-            };
-            let lit = self
-                .lit
-                .light(material, gather(&mesh.positions), gather(&mesh.normals));
+            let (p, n) = next_corners(mesh, &mut vertices, colors.len());
+            let lit = self.lit.light(material, p, n);
             colors.copy_from_slice(&lit.to_vec3s()[..colors.len()]);
         }
     }
+}
+
+/// Which objects of `world` to light whole this frame, given how many of their triangles will
+/// be shown (`triangles_needed`): those with at least a third as many as vertices, where lighting
+/// each vertex once, in order, costs less than lighting the shown triangles' corners.
+pub(super) fn objects_lit_whole(world: &World, triangles_needed: &[usize]) -> Vec<bool> {
+    world
+        .objects
+        .iter()
+        .zip(triangles_needed)
+        .map(|(o, &needed)| 3 * needed >= o.mesh.positions.len())
+        .collect()
+}
+
+/// Runs `light(object, mesh, values)` in parallel for each object of `world` that `lit` marks,
+/// on its buffer in `whole` (one per object, kept from frame to frame).
+pub(super) fn light_whole(
+    world: &World,
+    lit: &[bool],
+    whole: &mut Vec<Vec<Vec3>>,
+    light: impl Fn(usize, &Mesh, &mut Vec<Vec3>) + Sync,
+) {
+    whole.resize_with(world.objects.len(), Vec::new);
+    whole
+        .par_iter_mut()
+        .zip(&world.objects)
+        .enumerate()
+        .zip(lit)
+        .filter(|(_, lit)| **lit)
+        .for_each(|((object, (values, o)), _)| light(object, &o.mesh, values));
+}
+
+/// The positions and normals of the next `count` (1..=[`WIDTH`]) vertices of `mesh` that
+/// `vertices` yields, in lanes; lanes past the last vertex repeat it.
+#[inline(always)]
+pub(super) fn next_corners<L: Lanes8>(
+    mesh: &Mesh,
+    vertices: &mut impl Iterator<Item = usize>,
+    count: usize,
+) -> (V3<L>, V3<L>) {
+    let mut ids = [0; WIDTH];
+    for id in &mut ids[..count] {
+        *id = vertices.next().expect("three vertices per triangle");
+    }
+    for k in count..WIDTH {
+        ids[k] = ids[count - 1];
+    }
+    let gather = |values: &[Vec3]| {
+        let v = ids.map(|i| values[i]);
+        V3::new(
+            L::from_array(v.map(|v| v.x)),
+            L::from_array(v.map(|v| v.y)),
+            L::from_array(v.map(|v| v.z)),
+        )
+    };
+    (gather(&mesh.positions), gather(&mesh.normals))
 }

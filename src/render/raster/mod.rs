@@ -2,9 +2,11 @@
 //! (`fragments`), to a shader; Gouraud lights the vertices and interpolates the colour, Phong
 //! interpolates the normal and lights every pixel.
 
+mod colored;
 mod coverage;
 mod fragments;
 mod gouraud;
+mod gouraud_parts;
 mod phong;
 mod projected;
 #[cfg(target_arch = "x86_64")]

@@ -1,11 +1,14 @@
-//! Z-buffer with Phong shading: interpolate the normal, light every pixel.
+//! Z-buffer with Phong shading: interpolate the normal, light every pixel. Where some mesh has
+//! vertex colours, the colour is interpolated too, a second varying, and the albedo of each
+//! pixel is the material colour times it; a world without them keeps the one varying.
 
 use glam::Vec3;
 
+use super::colored::ColoredObjects;
 use super::fragments::Fragments;
 use super::setup::RasterScratch;
 use super::shader::Shader;
-use super::varying::PerVertex;
+use super::varying::{NormalsAndColors, PerVertex};
 use super::zbuffer::draw;
 use crate::render::camera::View;
 use crate::render::materials::{MaterialLanes, ObjectMaterials};
@@ -26,25 +29,23 @@ pub fn render_phong(
     draw_normals(scratch, world, view, progress, &shader, out)
 }
 
-/// Draws with `shader`, the vertex normals as the varying.
+/// Draws with `shader`, the vertex normals as the varying, and the vertex colours as a second
+/// one where some mesh of `world` has them.
 fn draw_normals(
     scratch: &mut RasterScratch,
     world: &World,
     view: &View,
     progress: &Progress,
-    shader: &impl Shader,
+    shader: &(impl Shader<1> + Shader<2>),
     out: &mut [Vec3],
 ) -> Result<(), Cancelled> {
+    let geometry = &mut scratch.geometry;
+    if world.objects.iter().any(|o| o.mesh.colors.is_some()) {
+        let varyings = &mut NormalsAndColors::new(world);
+        return draw::<2>(geometry, world, view, progress, varyings, shader, out);
+    }
     let normals = &mut PerVertex::normals(world);
-    draw(
-        &mut scratch.geometry,
-        world,
-        view,
-        progress,
-        normals,
-        shader,
-        out,
-    )
+    draw::<1>(geometry, world, view, progress, normals, shader, out)
 }
 
 /// [`render_phong`] lighting every batch of eight pixels alone, never two at once: what the
@@ -59,8 +60,8 @@ pub(super) fn render_phong_unpaired(
 ) -> Result<(), Cancelled> {
     /// `S`, one batch at a time.
     struct OneAtATime<S>(S);
-    impl<S: Shader> Shader for OneAtATime<S> {
-        fn shade<L: Lanes8>(&self, fragments: &Fragments<L>, row: &mut [Vec3]) {
+    impl<S: Shader<K>, const K: usize> Shader<K> for OneAtATime<S> {
+        fn shade<L: Lanes8>(&self, fragments: &Fragments<L, K>, row: &mut [Vec3]) {
             self.0.shade(fragments, row);
         }
     }
@@ -75,16 +76,17 @@ struct PhongShader<'a> {
     view: &'a View,
     lighting: Lighting<'a>,
     materials: ObjectMaterials,
+    colored: ColoredObjects,
 }
 
-impl Shader for PhongShader<'_> {
+impl Shader<1> for PhongShader<'_> {
     #[inline(always)]
     fn shade<L: Lanes8>(&self, fragments: &Fragments<L>, row: &mut [Vec3]) {
         let color = self.light(
             fragments.columns(),
             fragments.y,
             fragments.depth,
-            fragments.varying,
+            fragments.varying[0],
             &self.materials.of_lanes(&fragments.object),
         );
         fragments.write(color, row);
@@ -99,8 +101,51 @@ impl Shader for PhongShader<'_> {
             L::pair(low.columns(), high.columns()),
             low.y,
             L::pair(low.depth, high.depth),
-            V3::pair(low.varying, high.varying),
+            V3::pair(low.varying[0], high.varying[0]),
             &self.materials.of_pair::<L>(&low.object, &high.object),
+        );
+        let (low_color, high_color) = V3::halves(color);
+        low.write(low_color, row);
+        high.write(high_color, row);
+    }
+}
+
+/// With the vertex colour as the second varying: the albedo is the material colour times it,
+/// on meshes with colours; the others keep their material colour as it is.
+impl Shader<2> for PhongShader<'_> {
+    #[inline(always)]
+    fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 2>, row: &mut [Vec3]) {
+        let mut material = self.materials.of_lanes(&fragments.object);
+        material.color = self.albedo(fragments, material.color);
+        let color = self.light(
+            fragments.columns(),
+            fragments.y,
+            fragments.depth,
+            fragments.varying[0],
+            &material,
+        );
+        fragments.write(color, row);
+    }
+
+    const SHADES_TWO: bool = true;
+
+    #[inline(always)]
+    fn shade_two<L: Lanes8>(
+        &self,
+        low: &Fragments<L, 2>,
+        high: &Fragments<L, 2>,
+        row: &mut [Vec3],
+    ) {
+        debug_assert_eq!(low.y, high.y);
+        let mut material = self.materials.of_pair::<L>(&low.object, &high.object);
+        let (low_color, high_color) = V3::halves(material.color);
+        material.color = V3::pair(self.albedo(low, low_color), self.albedo(high, high_color));
+        let color = self.light(
+            L::pair(low.columns(), high.columns()),
+            low.y,
+            L::pair(low.depth, high.depth),
+            V3::pair(low.varying[0], high.varying[0]),
+            &material,
         );
         let (low_color, high_color) = V3::halves(color);
         low.write(low_color, row);
@@ -115,7 +160,16 @@ impl<'a> PhongShader<'a> {
             view,
             lighting: Lighting::new(world),
             materials: ObjectMaterials::new(world),
+            colored: ColoredObjects::new(world),
         }
+    }
+
+    /// The albedo of `fragments` whose material colours are `color`: times the interpolated
+    /// vertex colour in the lanes whose object has colours.
+    #[inline(always)]
+    fn albedo<L: Lanes8>(&self, fragments: &Fragments<L, 2>, color: V3<L>) -> V3<L> {
+        let tinted = color.mul_elements(fragments.varying[1]);
+        self.colored.select(&fragments.object, tinted, color)
     }
 
     /// The colours of pixels in columns `x` of row `y` whose surface lies at depth `depth` on

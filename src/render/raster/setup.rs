@@ -85,13 +85,42 @@ pub struct BandBuffers {
     pub id: Vec<u32>,
     /// Per id, whether the band shows the triangle (entry 0, no triangle, is unused).
     pub seen: Vec<bool>,
-    /// Per id, the planes of a seen triangle's interpolants (entries of unseen ones are stale).
-    pub planes: Vec<Planes>,
+    /// Per id, the planes of a seen triangle's interpolants (entries of unseen ones are stale),
+    /// for shaders of one varying, two and three (see [`PlanesOf`]).
+    pub planes: Vec<Planes<1>>,
+    pub planes_two: Vec<Planes<2>>,
+    pub planes_three: Vec<Planes<3>>,
     /// Working space for the planes: the mesh triangles of a run of seen triangles of one
-    /// object, their ids, and the varying at their corners.
+    /// object, their ids, and the varyings at their corners (each triangle's varyings one
+    /// after the other).
     pub mesh_triangles: Vec<u32>,
     pub ids: Vec<u32>,
     pub values: Vec<[Vec3; 3]>,
+}
+
+/// Where [`BandBuffers`] keep the planes of triangles with `K` varyings: each count has its own
+/// buffer, kept from frame to frame like the others.
+pub trait PlanesOf<const K: usize> {
+    /// The planes buffer for `K` varyings.
+    fn planes_of(&mut self) -> &mut Vec<Planes<K>>;
+}
+
+impl PlanesOf<1> for BandBuffers {
+    fn planes_of(&mut self) -> &mut Vec<Planes<1>> {
+        &mut self.planes
+    }
+}
+
+impl PlanesOf<2> for BandBuffers {
+    fn planes_of(&mut self) -> &mut Vec<Planes<2>> {
+        &mut self.planes_two
+    }
+}
+
+impl PlanesOf<3> for BandBuffers {
+    fn planes_of(&mut self) -> &mut Vec<Planes<3>> {
+        &mut self.planes_three
+    }
 }
 
 /// One setup task: triangles `start..end` of one object, and what they became.

@@ -16,7 +16,9 @@ pub trait Varying: Sync + Send {
     fn prepare(&mut self, _triangles_needed: &[usize]) {}
 
     /// Appends to `out` the values at the three vertices of each of `triangles` (indices into
-    /// the object's triangles) of object `object`.
+    /// the object's triangles) of object `object`. A varying of K values per vertex (the
+    /// Z-buffer's shader says how many it takes) appends K entries per triangle, the first
+    /// value's corners, then the second's, and so on.
     fn corners(&self, object: usize, triangles: &[u32], out: &mut Vec<[Vec3; 3]>);
 
     /// Hints that the corners of `triangle` of `object` will be asked for soon: the mesh data
@@ -71,5 +73,48 @@ impl Varying for PerVertex<'_> {
 
     fn prefetch(&self, object: usize, triangle: u32) {
         prefetch::ahead(&self.triangles[object][triangle as usize]);
+    }
+}
+
+/// Two values per vertex: the vertex normals of a world's meshes, then their vertex colours
+/// (white for a mesh without them). Phong shading's varyings where some mesh has colours.
+pub struct NormalsAndColors<'a> {
+    normals: PerVertex<'a>,
+    /// `colors[object]`: the mesh's vertex colours, if it has them.
+    colors: Vec<Option<&'a [Vec3]>>,
+}
+
+impl<'a> NormalsAndColors<'a> {
+    /// The normals and colours of `world`'s meshes.
+    pub fn new(world: &'a World) -> NormalsAndColors<'a> {
+        NormalsAndColors {
+            normals: PerVertex::normals(world),
+            colors: world
+                .objects
+                .iter()
+                .map(|o| o.mesh.colors.as_deref())
+                .collect(),
+        }
+    }
+}
+
+impl Varying for NormalsAndColors<'_> {
+    fn corners(&self, object: usize, triangles: &[u32], out: &mut Vec<[Vec3; 3]>) {
+        let (normals, indices) = (self.normals.values[object], self.normals.triangles[object]);
+        let colors = self.colors[object];
+        for &t in triangles {
+            for i in indices[t as usize] {
+                prefetch::ahead(&normals[i as usize]);
+            }
+        }
+        for &t in triangles {
+            let corners = indices[t as usize];
+            out.push(corners.map(|i| normals[i as usize]));
+            out.push(colors.map_or([Vec3::ONE; 3], |c| corners.map(|i| c[i as usize])));
+        }
+    }
+
+    fn prefetch(&self, object: usize, triangle: u32) {
+        self.normals.prefetch(object, triangle);
     }
 }

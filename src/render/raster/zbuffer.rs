@@ -21,7 +21,7 @@ use super::fragments::{Fragments, Packer, Run};
 #[cfg(target_arch = "x86_64")]
 use super::scan_avx2::{Avx2, Band};
 use super::screen_triangle::{Planes, ScreenTriangle};
-use super::setup::{BandBuffers, Bands, Geometry};
+use super::setup::{BandBuffers, Bands, Geometry, PlanesOf};
 use super::shader::Shader;
 use super::spans::{fits_lanes, for_each_block, solved_spans};
 use super::varying::Varying;
@@ -37,19 +37,22 @@ use wide::{CmpEq, CmpGe, i32x8, u32x8};
 /// written), with `geometry` as working memory. Each band of rows is scan-converted with a
 /// depth test on 1/w, keeping the nearest triangle per pixel centre; then the covered pixels of
 /// each row are handed to `shader` eight at a time as [`Fragments`], on the widest lanes the
-/// CPU has, with `varying` interpolated perspective-correctly, and it writes their colours into
-/// the row. Uncovered pixels get the background. Shading after the depth test shades each pixel
-/// once however much overdraw the scene has, and shading right after each band keeps the band's
-/// buffers in cache.
-pub fn draw(
+/// CPU has, with `varying`'s `K` values interpolated perspective-correctly, and it writes their
+/// colours into the row. Uncovered pixels get the background. Shading after the depth test
+/// shades each pixel once however much overdraw the scene has, and shading right after each
+/// band keeps the band's buffers in cache.
+pub fn draw<const K: usize>(
     geometry: &mut Geometry,
     world: &World,
     view: &View,
     progress: &Progress,
     varying: &mut dyn Varying,
-    shader: &impl Shader,
+    shader: &impl Shader<K>,
     out: &mut [Vec3],
-) -> Result<(), Cancelled> {
+) -> Result<(), Cancelled>
+where
+    BandBuffers: PlanesOf<K>,
+{
     let width = view.width;
     debug_assert_eq!(out.len(), width as usize * view.height as usize);
     let threads = rayon::current_num_threads().max(1);
@@ -84,12 +87,13 @@ pub fn draw(
                 triangles.len(),
                 &mut buffers.seen,
             );
+            let mut planes = std::mem::take(buffers.planes_of());
             with_avx2(
                 #[inline(always)]
-                || set_planes(triangles, &bands, varying, buffers),
+                || set_planes(triangles, &bands, varying, buffers, &mut planes),
             );
             run_on_best_lanes(ShadeRows {
-                planes: &buffers.planes,
+                planes: &planes,
                 ids: &buffers.id,
                 width: width as usize,
                 top,
@@ -97,6 +101,7 @@ pub fn draw(
                 shader,
                 rows,
             });
+            *buffers.planes_of() = planes;
             progress.advance(band_rows as u64);
             Ok(())
         });
@@ -126,19 +131,19 @@ fn mark_seen(ids: &[u32], count: usize, seen: &mut Vec<bool>) {
         .for_each(|&id| seen[id as usize] = true);
 }
 
-/// Sets up `buffers.planes[id]` for each id the band shows (`buffers.seen`) of its bin
-/// `triangles`: the varying at the corners of each run of seen triangles of one object is
-/// asked of `varying` at once.
+/// Sets up `planes[id]` for each id the band shows (`buffers.seen`) of its bin `triangles`:
+/// the `K` varyings at the corners of each run of seen triangles of one object are asked of
+/// `varying` at once.
 #[inline(always)]
-fn set_planes(
+fn set_planes<const K: usize>(
     triangles: &[&ScreenTriangle],
     bands: &Bands,
     varying: &dyn Varying,
     buffers: &mut BandBuffers,
+    planes: &mut Vec<Planes<K>>,
 ) {
     let BandBuffers {
         seen,
-        planes,
         mesh_triangles,
         ids,
         values,
@@ -168,7 +173,9 @@ fn set_planes(
             continue;
         }
         varying.corners(object as usize, mesh_triangles, values);
-        for (&id, values) in ids.iter().zip(values.iter()) {
+        debug_assert_eq!(values.len(), K * ids.len());
+        let (values, _) = values.as_chunks::<K>();
+        for (&id, values) in ids.iter().zip(values) {
             let t = triangles[id as usize - 1];
             planes[id as usize] = bands.corners(t).planes(t, *values);
         }
@@ -177,8 +184,8 @@ fn set_planes(
 
 /// The shading of a band's rows, `top` down: `planes` and `ids` as [`shade_row`] takes them,
 /// `ids` for the whole band and [`WIDTH`] past it.
-struct ShadeRows<'a, S> {
-    planes: &'a [Planes],
+struct ShadeRows<'a, S, const K: usize> {
+    planes: &'a [Planes<K>],
     ids: &'a [u32],
     /// Pixels per row.
     width: usize,
@@ -189,7 +196,7 @@ struct ShadeRows<'a, S> {
     rows: &'a mut [Vec3],
 }
 
-impl<S: Shader> LanesJob for ShadeRows<'_, S> {
+impl<S: Shader<K>, const K: usize> LanesJob for ShadeRows<'_, S, K> {
     type Output = ();
 
     #[inline(always)]
@@ -200,7 +207,7 @@ impl<S: Shader> LanesJob for ShadeRows<'_, S> {
             // The row's ids and the next row's (or the padding): runs are found in lanes.
             let ids = &self.ids[start..start + width + WIDTH];
             let y = self.top + r as u32;
-            shade_row::<L, S>(self.planes, ids, y, self.background, self.shader, out);
+            shade_row::<L, S, K>(self.planes, ids, y, self.background, self.shader, out);
         }
     }
 }
@@ -228,15 +235,15 @@ fn run_length(ids: &[u32], row: usize) -> usize {
 /// runs of one triangle go to `shader` as whole spans of eight, the rest of each run packed in
 /// lanes; a shader that [shades two batches at once](Shader::SHADES_TWO) gets them in pairs.
 #[inline(always)]
-fn shade_row<L: Lanes8, S: Shader>(
-    planes: &[Planes],
+fn shade_row<L: Lanes8, S: Shader<K>, const K: usize>(
+    planes: &[Planes<K>],
     ids: &[u32],
     y: u32,
     background: Vec3,
     shader: &S,
     out: &mut [Vec3],
 ) {
-    let mut packer = Packer::<L>::default();
+    let mut packer = Packer::<L, K>::default();
     // A batch waiting for a second one (pixels are written once each, in any order).
     let mut waiting = None;
     let mut x = 0;
@@ -278,10 +285,10 @@ fn shade_row<L: Lanes8, S: Shader>(
 /// Hands `batch` to `shader`: at once, or, where it [shades two](Shader::SHADES_TWO), with the
 /// batch `waiting` if there is one, else as the one waiting.
 #[inline(always)]
-fn shade_batch<L: Lanes8, S: Shader>(
+fn shade_batch<L: Lanes8, S: Shader<K>, const K: usize>(
     shader: &S,
-    waiting: &mut Option<Fragments<L>>,
-    batch: Fragments<L>,
+    waiting: &mut Option<Fragments<L, K>>,
+    batch: Fragments<L, K>,
     out: &mut [Vec3],
 ) {
     if !S::SHADES_TWO {

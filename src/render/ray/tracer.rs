@@ -106,6 +106,9 @@ pub(super) struct Tracer<'a> {
     accel: &'a SceneAccel,
     lighting: Lighting<'a>,
     materials: ObjectMaterials,
+    /// Whether any object's mesh has vertex colours: only then is the colour at a hit looked
+    /// up, so that worlds without them trace as they did before colours existed.
+    colored: bool,
     shadows: bool,
     max_depth: u32,
 }
@@ -143,6 +146,7 @@ impl<'a> Tracer<'a> {
             accel,
             lighting: Lighting::new(world),
             materials: ObjectMaterials::new(world),
+            colored: world.objects.iter().any(|o| o.mesh.colors.is_some()),
             shadows: options.shadows,
             max_depth: options
                 .max_depth
@@ -230,6 +234,19 @@ impl<'a> Tracer<'a> {
         }
     }
 
+    /// The vertex colour at barycentrics (u, v) of triangle `triangle` of object `object`:
+    /// the corners' colours weighted as [`Tracer::surface_at`] weights their normals, or white
+    /// when the mesh has none.
+    #[inline]
+    fn vertex_color(&self, object: u32, triangle: u32, u: f32, v: f32) -> Vec3 {
+        let mesh = self.mesh(object);
+        let Some(colors) = &mesh.colors else {
+            return Vec3::ONE;
+        };
+        let [a, b, c] = mesh.triangles[triangle as usize].map(|k| colors[k as usize]);
+        a * (1.0 - u - v) + b * u + c * v
+    }
+
     /// [`Tracer::surface`] on the corners of the triangle hit.
     #[inline]
     pub(super) fn surface_at(&self, corners: &Corners, u: f32, v: f32, d: Vec3) -> Surface {
@@ -310,7 +327,16 @@ impl<'a> Tracer<'a> {
                 Patch::Mesh(corners) => self.surface_at(corners, u[s], v[s], dirs[k]),
             }
         });
-        let material = self.materials.of_lanes::<F32x8>(&objects);
+        let mut material = self.materials.of_lanes::<F32x8>(&objects);
+        if self.colored {
+            // The albedo: the material's colour times the vertex colour at the hit (white,
+            // which changes no bit, on meshes without colours).
+            let colors: [Vec3; WIDTH] = std::array::from_fn(|k| {
+                let s = source(k);
+                self.vertex_color(objects[k], triangles[s], u[s], v[s])
+            });
+            material.color = material.color.mul_elements(V3::gather(&colors));
+        }
         let p = V3::gather(&surfaces.each_ref().map(|s| s.p));
         let n = V3::gather(&surfaces.each_ref().map(|s| s.n));
         let origins = V3::gather(&surfaces.each_ref().map(|s| s.origin));
@@ -402,8 +428,12 @@ impl<'a> Tracer<'a> {
         };
         let d = Vec3::from(ray.dir);
         let s = self.surface(&hit, d);
-        let material = &self.materials.one[hit.object as usize];
-        let lit = self.lighting.shade(s.p, s.n, -d, material, |_, light| {
+        let mut material = self.materials.one[hit.object as usize];
+        if self.colored {
+            let color = self.vertex_color(hit.object, hit.triangle, hit.u, hit.v);
+            material.color = material.color.mul_elements(color.into());
+        }
+        let lit = self.lighting.shade(s.p, s.n, -d, &material, |_, light| {
             self.light_reaches(s.origin, light, stats)
         });
         lit + self.reflection(hit.object, &s, d, depth, stats)

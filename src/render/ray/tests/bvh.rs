@@ -22,6 +22,7 @@ pub(super) fn mesh_from(triangles: &[[Vec3; 3]]) -> Mesh {
             .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
             .collect(),
         positions,
+        colors: None,
         flat: false,
     }
 }
@@ -178,6 +179,7 @@ fn sphere_mesh() -> Mesh {
         normals: f.positions.clone(),
         positions: f.positions,
         triangles: f.triangles,
+        colors: None,
         flat: false,
     }
 }

@@ -25,6 +25,7 @@ fn sphere(doubled: bool) -> Mesh {
         normals: f.positions.clone(),
         positions: f.positions,
         triangles: f.triangles,
+        colors: None,
         flat: true,
     }
 }
