@@ -8,12 +8,23 @@
 ///
 /// Invariant: `keys` holds each distinct key once, in order of first sight; every non-zero slot
 /// is `tag << 32 | (index + 1)` for a key at `keys[index]` whose hash has `tag` in its high bits;
-/// fewer than half the slots are full.
+/// fewer than half the slots are full; every `recent` entry with a non-zero `index + 1` holds a
+/// key and the index it was given.
 #[derive(Debug)]
 pub struct Welder<const N: usize> {
     slots: Vec<u64>,
     keys: Vec<[u32; N]>,
+    /// The keys met lately, by the high bits of their hash (direct-mapped, 16 Ki entries): a
+    /// mesh names each corner about six times, mostly in faces close together in the file, so
+    /// most lookups end here without touching the large table.
+    recent: Vec<([u32; N], u32)>,
 }
+
+/// Bits of the hash that choose an entry of [`Welder::recent`].
+const RECENT_BITS: u32 = 14;
+
+/// Keys looked up together by [`Welder::index_all`].
+pub const BATCH: usize = 16;
 
 impl<const N: usize> Welder<N> {
     /// A welder expecting about `distinct` keys (it grows past that as needed).
@@ -22,6 +33,7 @@ impl<const N: usize> Welder<N> {
         Welder {
             slots: vec![0; slots],
             keys: Vec::with_capacity(distinct),
+            recent: vec![([0; N], 0); 1 << RECENT_BITS],
         }
     }
 
@@ -29,6 +41,42 @@ impl<const N: usize> Welder<N> {
     #[inline]
     pub fn index(&mut self, key: [u32; N]) -> u32 {
         let hash = hash(&key);
+        let entry = (hash >> (64 - RECENT_BITS)) as usize;
+        let (seen, plus_one) = self.recent[entry];
+        if plus_one != 0 && seen == key {
+            return plus_one - 1;
+        }
+        let index = self.probe(key, hash);
+        self.recent[entry] = (key, index + 1);
+        index
+    }
+
+    /// The indices of `keys` (at most [`BATCH`] of them), written to `out`: [`Welder::index`]
+    /// of each in turn, with the large table's slots for the keys not met lately read first,
+    /// together. A large table misses the cache (and the TLB) on nearly every probe; loads that
+    /// do not wait on one another overlap, so a batch waits about as long as one probe.
+    #[inline]
+    pub fn index_all(&mut self, keys: &[[u32; N]], out: &mut [u32]) {
+        let mask = self.slots.len() - 1;
+        let mut warm = 0u64;
+        for key in keys {
+            let hash = hash(key);
+            let (seen, plus_one) = self.recent[(hash >> (64 - RECENT_BITS)) as usize];
+            if plus_one == 0 || seen != *key {
+                let slot = self.slots[hash as usize & mask];
+                // The key a full slot names is read by the probe too.
+                let index = (slot as u32).wrapping_sub(1) as usize;
+                warm ^= slot ^ self.keys.get(index).map_or(0, |k| k[0] as u64);
+            }
+        }
+        std::hint::black_box(warm);
+        for (key, out) in keys.iter().zip(out) {
+            *out = self.index(*key);
+        }
+    }
+
+    /// The index of `key` (whose hash is `hash`) in the large table, added when missing.
+    fn probe(&mut self, key: [u32; N], hash: u64) -> u32 {
         let tag = hash >> 32;
         let mask = self.slots.len() - 1;
         let mut at = hash as usize & mask;
@@ -104,7 +152,10 @@ mod tests {
     fn equal_keys_share_an_index_in_order_of_first_sight_through_growth() {
         let mut welder = Welder::<3>::with_capacity(1);
         let keys: Vec<[u32; 3]> = (0..1000u32).map(|i| [i % 300, i % 7, 0]).collect();
-        let indices: Vec<u32> = keys.iter().map(|&k| welder.index(k)).collect();
+        let mut indices = vec![0; keys.len()];
+        for (keys, out) in keys.chunks(BATCH).zip(indices.chunks_mut(BATCH)) {
+            welder.index_all(keys, out);
+        }
         let distinct = welder.into_keys();
         for (key, index) in keys.iter().zip(&indices) {
             assert_eq!(&distinct[*index as usize], key);
@@ -115,6 +166,18 @@ mod tests {
         assert_eq!(sorted.len(), distinct.len(), "each key once");
         assert_eq!(indices[0], 0);
         assert_eq!(indices[1], 1);
+        // Looked up one at a time, the same keys give the same indices.
+        for (key, index) in keys.iter().zip(&indices) {
+            assert_eq!(welder_again(&distinct, *key), *index);
+        }
+    }
+
+    fn welder_again(distinct: &[[u32; 3]], key: [u32; 3]) -> u32 {
+        let mut welder = Welder::<3>::with_capacity(1);
+        for &k in distinct {
+            welder.index(k);
+        }
+        welder.index(key)
     }
 
     #[test]

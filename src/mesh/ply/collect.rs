@@ -9,7 +9,7 @@ use super::plan::{NX, RED, SLOTS, U, VertexAttributes, X};
 use super::scalar::Scalar;
 use crate::mesh::ModelGeometry;
 use crate::mesh::srgb::{srgb_byte_to_linear, srgb_to_linear};
-use crate::mesh::weld::{Welder, coordinate_bits};
+use crate::mesh::weld::{BATCH, Welder, coordinate_bits};
 use crate::scene::limits::COORDINATE;
 
 /// What has been read so far.
@@ -209,12 +209,28 @@ fn weld<const N: usize>(
     const UNSEEN: u32 = u32::MAX;
     let mut welder = Welder::with_capacity(vertices);
     let mut remap = vec![UNSEEN; vertices];
-    for i in triangles.iter_mut().flatten() {
-        let slot = &mut remap[*i as usize];
+    // The vertices in order of first use, welded in batches (see `Welder::index_all`).
+    let mut used = Vec::with_capacity(vertices);
+    for &i in triangles.iter().flatten() {
+        let slot = &mut remap[i as usize];
         if *slot == UNSEEN {
-            *slot = welder.index(key(*i as usize));
+            *slot = 0;
+            used.push(i);
         }
-        *i = *slot;
+    }
+    let mut keys = [[0u32; N]; BATCH];
+    let mut indices = [0u32; BATCH];
+    for batch in used.chunks(BATCH) {
+        for (k, &i) in keys.iter_mut().zip(batch) {
+            *k = key(i as usize);
+        }
+        welder.index_all(&keys[..batch.len()], &mut indices);
+        for (&i, &index) in batch.iter().zip(&indices) {
+            remap[i as usize] = index;
+        }
+    }
+    for i in triangles.iter_mut().flatten() {
+        *i = remap[*i as usize];
     }
     (welder.into_keys(), triangles)
 }

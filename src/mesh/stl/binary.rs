@@ -7,7 +7,7 @@ use std::io::Read;
 use super::error::{StlProblem, coordinate_problem};
 use crate::mesh::Place;
 use crate::mesh::byte_source::ByteSource;
-use crate::mesh::weld::{Welder, coordinate_bits};
+use crate::mesh::weld::{BATCH, Welder, coordinate_bits};
 
 /// Bytes a binary STL gives each triangle.
 pub const RECORD: usize = 50;
@@ -35,23 +35,29 @@ pub fn read_triangles<R: Read>(
                 },
             ));
         }
-        for (t, record) in block[..whole * RECORD].chunks_exact(RECORD).enumerate() {
-            let mut corners = [0u32; 3];
-            for (k, corner) in corners.iter_mut().enumerate() {
-                let mut key = [0u32; 3];
-                for (c, bits) in key.iter_mut().enumerate() {
-                    let at = 12 + 12 * k + 4 * c;
-                    let b = &record[at..at + 4];
-                    let value = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
-                    if let Some(problem) = coordinate_problem(value, done + t as u64 + 1) {
-                        let offset = start + (t * RECORD + at) as u64;
+        // Triangles in batches whose corners are welded together (see `Welder::index_all`).
+        const TRIANGLES: usize = BATCH / 3;
+        let mut keys = [[0u32; 3]; TRIANGLES * 3];
+        let mut corners = [0u32; TRIANGLES * 3];
+        for (b, batch) in block[..whole * RECORD]
+            .chunks(TRIANGLES * RECORD)
+            .enumerate()
+        {
+            for (t, record) in batch.chunks_exact(RECORD).enumerate() {
+                // The corners' nine coordinates, after the 12 bytes of the normal.
+                for (j, b4) in record[12..48].chunks_exact(4).enumerate() {
+                    let value = f32::from_le_bytes([b4[0], b4[1], b4[2], b4[3]]);
+                    let t_block = b * TRIANGLES + t;
+                    if let Some(problem) = coordinate_problem(value, done + t_block as u64 + 1) {
+                        let offset = start + (t_block * RECORD + 12 + 4 * j) as u64;
                         return Err((Place::Byte(offset), problem));
                     }
-                    *bits = coordinate_bits(value);
+                    keys[3 * t + j / 3][j % 3] = coordinate_bits(value);
                 }
-                *corner = welder.index(key);
             }
-            triangles.push(corners);
+            let n = batch.len() / RECORD * 3;
+            welder.index_all(&keys[..n], &mut corners[..n]);
+            triangles.extend(corners[..n].chunks_exact(3).map(|c| [c[0], c[1], c[2]]));
         }
         source.consume(whole * RECORD);
         done += whole as u64;
