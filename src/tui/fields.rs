@@ -390,7 +390,7 @@ pub fn typed(scene: &Scene, item: Item, key: Key, text: &str) -> Result<Scene, R
         }
         Slot::Path(p) => {
             if t.is_empty() {
-                return Err("type the path of an OBJ file".into());
+                return Err("type the path of a model file".into());
             }
             *p = PathBuf::from(t);
         }
