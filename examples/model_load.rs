@@ -11,9 +11,14 @@
 //! STL's triangles in a random order, as a mesh with no locality would have them: welding then
 //! misses the cache on most corners.
 
+#[path = "common/cpu_time.rs"]
+mod cpu_time;
+
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
+
+use cpu_time::cpu_time;
 
 use rastray::mesh::{load_ply, load_stl};
 
@@ -79,21 +84,6 @@ fn report(name: &str, path: &Path, load: impl Fn() -> usize) {
         cpu.as_secs_f64() * 1e3,
         rate(cpu)
     );
-}
-
-/// User + system CPU time of this process so far, from /proc (10 ms ticks); zero elsewhere.
-/// (As `ray_speed` reads it.)
-fn cpu_time() -> Duration {
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    // Fields after the parenthesised command name; utime and stime are the 14th and 15th.
-    let rest = stat.rsplit_once(')').map_or("", |(_, r)| r);
-    let ticks: u64 = rest
-        .split_whitespace()
-        .skip(11)
-        .take(2)
-        .filter_map(|f| f.parse::<u64>().ok())
-        .sum();
-    Duration::from_millis(ticks * 10)
 }
 
 fn write(path: &PathBuf, bytes: &[u8]) {
