@@ -363,3 +363,21 @@ fn the_same_mesh_in_any_format_covers_the_same_pixels() {
         }
     }
 }
+
+#[test]
+fn face_texcoords_give_each_corner_its_uv_and_a_list_after_the_indices_leaves_them_be() {
+    let text = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+                property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+                property list uchar float texcoord\nproperty list uchar int other\nend_header\n\
+                0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3 8 0 0 1 0 1 1 0 1 2 7 7\n";
+    let model = load_ply(&file("texcoord.ply", text.as_bytes())).expect("loads");
+    assert_eq!(model.geometry.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+    let uv = Vec2::new;
+    assert_eq!(
+        model.geometry.corner_uvs.expect("uvs"),
+        vec![
+            [uv(0.0, 1.0), uv(1.0, 1.0), uv(1.0, 0.0)],
+            [uv(0.0, 1.0), uv(1.0, 0.0), uv(0.0, 0.0)]
+        ]
+    );
+}

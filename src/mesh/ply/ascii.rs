@@ -7,7 +7,7 @@ use super::binary::Role;
 use super::collect::Collector;
 use super::error::PlyProblem;
 use super::header::{Element, PropertyType, shortened};
-use super::plan::{Plan, SLOTS, Target};
+use super::plan::{FaceLists, Plan, SLOTS, Target};
 use super::scalar::Scalar;
 use crate::mesh::Place;
 
@@ -57,7 +57,7 @@ pub fn read_element<B: BufRead>(
         return Ok(());
     }
     let mut values = [0f64; SLOTS];
-    let mut corners: Vec<f64> = Vec::new();
+    let mut lists = FaceLists::default();
     for index in 1..=element.count {
         let Some(line) = lines.next().map_err(|e| (Place::File, PlyProblem::Io(e)))? else {
             return Err((
@@ -94,11 +94,13 @@ pub fn read_element<B: BufRead>(
                             index,
                         }));
                     }
-                    corners.clear();
+                    if let Some(list) = lists.of(target) {
+                        list.clear();
+                    }
                     for _ in 0..n as u64 {
                         let value = next(item).map_err(fail)?;
-                        if target == Target::Indices {
-                            corners.push(value);
+                        if let Some(list) = lists.of(target) {
+                            list.push(value);
                         }
                     }
                 }
@@ -112,7 +114,7 @@ pub fn read_element<B: BufRead>(
         }
         match role {
             Role::Vertex => collector.vertex(&values),
-            Role::Face => collector.face(&corners, true),
+            Role::Face => collector.face(&lists, true),
             Role::Skip => Ok(()),
         }
         .map_err(fail)?;

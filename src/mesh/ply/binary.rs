@@ -6,7 +6,7 @@ use std::io::Read;
 use super::collect::Collector;
 use super::error::PlyProblem;
 use super::header::{Element, PropertyType};
-use super::plan::{Plan, SLOTS, Target};
+use super::plan::{FaceLists, Plan, SLOTS, Target};
 use crate::mesh::Place;
 use crate::mesh::byte_source::ByteSource;
 
@@ -38,7 +38,7 @@ pub fn read_element<R: Read, const BIG: bool>(
     }
     let io = |e| (Place::File, PlyProblem::Io(e));
     let mut values = [0f64; SLOTS];
-    let mut corners: Vec<f64> = Vec::new();
+    let mut lists = FaceLists::default();
     let mut index = 0u64;
     let mut need = 1;
     while index < element.count {
@@ -46,11 +46,11 @@ pub fn read_element<R: Read, const BIG: bool>(
         let block = source.ahead(need).map_err(io)?;
         let mut at = 0;
         need = loop {
-            match record::<BIG>(&plan.properties, &block[at..], &mut values, &mut corners) {
+            match record::<BIG>(&plan.properties, &block[at..], &mut values, &mut lists) {
                 Ok(length) => {
                     let fed = match role {
                         Role::Vertex => collector.vertex(&values),
-                        Role::Face => collector.face(&corners, false),
+                        Role::Face => collector.face(&lists, false),
                         Role::Skip => Ok(()),
                     };
                     fed.map_err(|problem| (Place::Byte(start + at as u64), problem))?;
@@ -99,14 +99,14 @@ pub fn read_element<R: Read, const BIG: bool>(
 }
 
 /// Reads one record from the start of `bytes` by `properties`: scalar values into their
-/// `values` slot, the face's index list into `corners`. The record's length, or the bytes it
+/// `values` slot, the face's lists into `lists`. The record's length, or the bytes it
 /// needs when `bytes` is too short for it.
 #[inline(always)]
 fn record<const BIG: bool>(
     properties: &[(PropertyType, Target)],
     bytes: &[u8],
     values: &mut [f64; SLOTS],
-    corners: &mut Vec<f64>,
+    lists: &mut FaceLists,
 ) -> Result<usize, Result<Short, NegativeLength>> {
     let mut at = 0;
     for &(ty, target) in properties {
@@ -135,9 +135,9 @@ fn record<const BIG: bool>(
                 let Some(items) = bytes.get(start..end) else {
                     return Err(Ok(Short(end)));
                 };
-                if target == Target::Indices {
-                    corners.clear();
-                    corners.extend(items.chunks_exact(item.size()).map(|b| item.read::<BIG>(b)));
+                if let Some(list) = lists.of(target) {
+                    list.clear();
+                    list.extend(items.chunks_exact(item.size()).map(|b| item.read::<BIG>(b)));
                 }
                 at = end;
             }

@@ -5,7 +5,7 @@
 use glam::{Vec2, Vec3};
 
 use super::error::PlyProblem;
-use super::plan::{NX, RED, SLOTS, U, VertexAttributes, X};
+use super::plan::{FaceLists, NX, RED, SLOTS, U, VertexAttributes, X};
 use super::scalar::Scalar;
 use crate::mesh::ModelGeometry;
 use crate::mesh::srgb::{srgb_byte_to_linear, srgb_to_linear};
@@ -29,6 +29,9 @@ pub struct Collector {
     /// (u, v) as written: (0, 0) is the image's bottom-left.
     uvs: Option<Vec<Vec2>>,
     triangles: Vec<[u32; 3]>,
+    /// (u, v) of each triangle's corners from the faces' `texcoord` lists, while every face
+    /// so far has one of the right length.
+    face_uvs: Option<Vec<[Vec2; 3]>>,
     /// Faces read, for messages.
     faces: u64,
     limit: u64,
@@ -37,8 +40,15 @@ pub struct Collector {
 impl Collector {
     /// A collector for `vertices` vertices (the header's count, already bounded by the file's
     /// size) with `attributes`, keeping at most `limit` triangles; `faces` is the declared face
-    /// count (room is made for that many triangles, up to the limit).
-    pub fn new(vertices: u64, faces: u64, attributes: VertexAttributes, limit: u64) -> Collector {
+    /// count (room is made for that many triangles, up to the limit); `face_uvs`: whether the
+    /// faces carry texture coordinates.
+    pub fn new(
+        vertices: u64,
+        faces: u64,
+        attributes: VertexAttributes,
+        face_uvs: bool,
+        limit: u64,
+    ) -> Collector {
         let n = vertices as usize;
         Collector {
             vertices,
@@ -48,6 +58,7 @@ impl Collector {
             colors: attributes.colors.map(|_| Vec::with_capacity(n)),
             uvs: attributes.uvs.then(|| Vec::with_capacity(n)),
             triangles: Vec::with_capacity(faces.min(limit) as usize),
+            face_uvs: face_uvs.then(Vec::new),
             faces: 0,
             limit,
         }
@@ -112,7 +123,8 @@ impl Collector {
     /// corners is a point or a line: not drawn). `echo`: whether the message of an index out of
     /// range may quote it (text files) or not (binary data).
     #[inline]
-    pub fn face(&mut self, corners: &[f64], echo: bool) -> Result<(), PlyProblem> {
+    pub fn face(&mut self, lists: &FaceLists, echo: bool) -> Result<(), PlyProblem> {
+        let corners = &lists.indices[..];
         self.faces += 1;
         let face = self.faces;
         let vertices = self.vertices;
@@ -140,6 +152,18 @@ impl Collector {
             self.triangles.push([first, previous, next]);
             previous = next;
         }
+        if let Some(face_uvs) = &mut self.face_uvs {
+            let uvs: Vec<Vec2> = lists
+                .uvs
+                .chunks_exact(2)
+                .map(|uv| Vec2::new(uv[0] as f32, uv[1] as f32))
+                .collect();
+            if uvs.len() == corners.len() && uvs.iter().all(|uv| uv.is_finite()) {
+                face_uvs.extend(uvs[1..].windows(2).map(|w| [uvs[0], w[0], w[1]]));
+            } else {
+                self.face_uvs = None;
+            }
+        }
         Ok(())
     }
 
@@ -149,12 +173,17 @@ impl Collector {
             return Err(PlyProblem::NoTriangles);
         }
         let corner = |values: &[Vec2], t: &[u32; 3]| t.map(|i| values[i as usize]);
-        let corner_uvs = self.uvs.as_ref().map(|uvs| {
-            self.triangles
-                .iter()
-                .map(|t| corner(uvs, t).map(|uv| Vec2::new(uv.x, 1.0 - uv.y)))
-                .collect()
-        });
+        let flip = |uv: Vec2| Vec2::new(uv.x, 1.0 - uv.y);
+        let corner_uvs = match (&self.face_uvs, &self.uvs) {
+            (Some(face_uvs), _) => Some(face_uvs.iter().map(|t| t.map(flip)).collect()),
+            (None, Some(uvs)) => Some(
+                self.triangles
+                    .iter()
+                    .map(|t| corner(uvs, t).map(flip))
+                    .collect(),
+            ),
+            (None, None) => None,
+        };
         let corner_normals = self.normals.as_ref().map(|normals| {
             self.triangles
                 .iter()

@@ -2,7 +2,8 @@
 //! type, properties in any order, elements rastray does not read (and their lists) passed
 //! over. From the `vertex` element: `x y z`, and when present `nx ny nz`, `red green blue`
 //! and texture coordinates (`s t`, `u v` or `texture_u texture_v`); from the `face` element:
-//! `vertex_indices` (or `vertex_index`), polygons fanned into triangles. Colours are sRGB,
+//! `vertex_indices` (or `vertex_index`), polygons fanned into triangles, and `texcoord` (u v
+//! of each corner, as MeshLab writes), which wins over the vertices' texture coordinates. Colours are sRGB,
 //! whatever their type (bytes, or floats in 0..=1), and are decoded to linear. The image a
 //! `comment TextureFile NAME` names is recorded, not read.
 //!
@@ -72,7 +73,7 @@ pub fn load_ply(path: &Path) -> Result<PlyModel, PlyError> {
             },
         )));
     };
-    let face_plan = face_plan(&header.elements[face]).ok_or_else(|| {
+    let (face_plan, face_uvs) = face_plan(&header.elements[face]).ok_or_else(|| {
         fail((
             Place::Line(header.elements[face].line),
             PlyProblem::NoIndexList,
@@ -82,6 +83,7 @@ pub fn load_ply(path: &Path) -> Result<PlyModel, PlyError> {
         header.elements[vertex].count,
         header.elements[face].count,
         attributes,
+        face_uvs,
         MAX_TRIANGLES,
     );
     let plans: Vec<(Plan, Role)> = header

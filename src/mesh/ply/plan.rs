@@ -21,6 +21,28 @@ pub enum Target {
     Slot(usize),
     /// The face's vertex indices.
     Indices,
+    /// The face's texture coordinates, u and v for each corner in turn (`texcoord`).
+    TexCoords,
+}
+
+/// The lists of one face record.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FaceLists {
+    /// Vertex indices, as read.
+    pub indices: Vec<f64>,
+    /// u, v of each corner, as read (empty when the element has none).
+    pub uvs: Vec<f64>,
+}
+
+impl FaceLists {
+    /// The list `target` names, if it names one.
+    pub fn of(&mut self, target: Target) -> Option<&mut Vec<f64>> {
+        match target {
+            Target::Indices => Some(&mut self.indices),
+            Target::TexCoords => Some(&mut self.uvs),
+            Target::Skip | Target::Slot(_) => None,
+        }
+    }
 }
 
 /// How to read one element: each property's type and what it is read for.
@@ -82,8 +104,9 @@ pub fn vertex_plan(element: &Element) -> Option<(Plan, VertexAttributes)> {
     ))
 }
 
-/// The plan of the face element; `None` when it has no list of vertex indices.
-pub fn face_plan(element: &Element) -> Option<Plan> {
+/// The plan of the face element, and whether it gives texture coordinates per corner (a
+/// `texcoord` list, as MeshLab writes); `None` when it has no list of vertex indices.
+pub fn face_plan(element: &Element) -> Option<(Plan, bool)> {
     let list = ["vertex_indices", "vertex_index"].iter().find_map(|name| {
         element
             .find(name)
@@ -91,7 +114,13 @@ pub fn face_plan(element: &Element) -> Option<Plan> {
     })?;
     let mut targets = vec![Target::Skip; element.properties.len()];
     targets[list] = Target::Indices;
-    Some(plan(element, targets))
+    let uvs = element
+        .find("texcoord")
+        .filter(|&i| matches!(element.properties[i].ty, PropertyType::List { .. }));
+    if let Some(i) = uvs {
+        targets[i] = Target::TexCoords;
+    }
+    Some((plan(element, targets), uvs.is_some()))
 }
 
 /// The plan that reads past every property of `element`.
