@@ -86,6 +86,7 @@ fn property() -> impl Strategy<Value = Property> {
             "v",
             "vertex_indices",
             "vertex_index",
+            "texcoord",
             "other",
         ]),
         0..8usize,
