@@ -123,6 +123,13 @@ impl<const N: usize> Welder<N> {
     }
 }
 
+/// The positions whose coordinates have the bits of `keys`.
+pub fn positions_of(keys: Vec<[u32; 3]>) -> Vec<glam::Vec3> {
+    keys.into_iter()
+        .map(|k| glam::Vec3::from_array(k.map(f32::from_bits)))
+        .collect()
+}
+
 /// A multiply-xorshift hash of a key's words: the low bits choose the slot, the high 32 are
 /// the tag.
 #[inline]

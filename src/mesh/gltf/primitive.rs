@@ -1,7 +1,5 @@
 //! One glTF primitive read into welded triangles in the model's space.
 
-use std::collections::HashMap;
-
 use ::gltf::accessor::{DataType, Dimensions};
 use ::gltf::mesh::Mode;
 use ::gltf::{Accessor, Primitive, Semantic};
@@ -11,6 +9,7 @@ use super::accessor::check_accessor;
 use super::error::GltfError;
 use super::warning::ImportWarning;
 use crate::mesh::ModelGeometry;
+use crate::mesh::weld::{Welder, positions_of};
 
 /// What became of a primitive.
 #[derive(Debug)]
@@ -218,21 +217,13 @@ fn transform_normals(normals: &[Vec3], linear: Mat3) -> Option<Vec<Vec3>> {
 /// Merges vertices at bit-identical positions, so that computed normals smooth across the seams
 /// glTF exporters split vertices at; the file's normals, when given, stay with each corner.
 fn weld(positions: &[Vec3], triangles: &[[u32; 3]], normals: Option<&[Vec3]>) -> ModelGeometry {
-    let mut welded: Vec<Vec3> = Vec::with_capacity(positions.len());
-    let mut index_of: HashMap<[u32; 3], u32> = HashMap::with_capacity(positions.len());
+    let mut welder = Welder::with_capacity(positions.len());
     let remap: Vec<u32> = positions
         .iter()
-        .map(|p| {
-            *index_of
-                .entry(p.to_array().map(f32::to_bits))
-                .or_insert_with(|| {
-                    welded.push(*p);
-                    welded.len() as u32 - 1
-                })
-        })
+        .map(|p| welder.index(p.to_array().map(f32::to_bits)))
         .collect();
     ModelGeometry {
-        positions: welded,
+        positions: positions_of(welder.into_keys()),
         triangles: triangles
             .iter()
             .map(|t| t.map(|i| remap[i as usize]))

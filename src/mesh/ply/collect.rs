@@ -9,7 +9,7 @@ use super::plan::{FaceLists, NX, RED, SLOTS, U, VertexAttributes, X};
 use super::scalar::Scalar;
 use crate::mesh::ModelGeometry;
 use crate::mesh::srgb::{srgb_byte_to_linear, srgb_to_linear};
-use crate::mesh::weld::{BATCH, Welder, coordinate_bits};
+use crate::mesh::weld::{BATCH, Welder, coordinate_bits, positions_of};
 use crate::scene::limits::COORDINATE;
 
 /// What has been read so far.
@@ -205,7 +205,7 @@ impl Collector {
             None => {
                 let key = |i: usize| self.positions[i].to_array().map(coordinate_bits);
                 let (keys, triangles) = weld(self.positions.len(), self.triangles, key);
-                let positions = keys.iter().map(|k| from_bits(k)).collect();
+                let positions = positions_of(keys);
                 (positions, None, triangles)
             }
         };

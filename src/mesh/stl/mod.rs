@@ -16,15 +16,13 @@ use std::fmt;
 use std::io::BufReader;
 use std::path::Path;
 
-use glam::Vec3;
-
 pub use error::{StlError, StlProblem};
 
 use super::byte_source::ByteSource;
 use super::geometry::ModelGeometry;
 use super::model_error::{Place, grew};
 use super::model_format::{binary_stl_size, is_ascii_stl};
-use super::weld::Welder;
+use super::weld::{Welder, positions_of};
 use crate::world::MAX_TRIANGLES;
 
 /// How an STL file was written.
@@ -106,11 +104,7 @@ pub fn load_stl(path: &Path) -> Result<StlModel, StlError> {
     }
     Ok(StlModel {
         geometry: ModelGeometry {
-            positions: welder
-                .into_keys()
-                .into_iter()
-                .map(|k| Vec3::from_array(k.map(f32::from_bits)))
-                .collect(),
+            positions: positions_of(welder.into_keys()),
             triangles,
             corner_normals: None,
             colors: None,
