@@ -7,9 +7,14 @@
 //! the wall clock says more about the neighbours than about the renderer, while CPU time ÷ threads
 //! is what the same run takes on otherwise idle cores.
 
+#[path = "common/cpu_time.rs"]
+mod cpu_time;
+
 use std::path::Path;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
+
+use cpu_time::cpu_time;
 
 use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, RenderStats, Renderer};
@@ -35,20 +40,6 @@ subdivisions = {subdivisions}
 "#
     );
     from_toml_str(&text, Path::new("sphere.toml")).expect("a valid scene")
-}
-
-/// User + system CPU time of this process so far, from /proc (10 ms ticks); zero elsewhere.
-fn cpu_time() -> Duration {
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    // Fields after the parenthesised command name; utime and stime are the 14th and 15th.
-    let rest = stat.rsplit_once(')').map_or("", |(_, r)| r);
-    let ticks: u64 = rest
-        .split_whitespace()
-        .skip(11)
-        .take(2)
-        .filter_map(|f| f.parse::<u64>().ok())
-        .sum();
-    Duration::from_millis(ticks * 10)
 }
 
 /// A measured run: wall-clock and CPU time.

@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 
 use glam::Vec3;
 
-use crate::mesh::{MeshFile, MeshFileError};
-use crate::scene::{Camera, Light, Object, Scene, Shape, ShapeKind, default_scene};
+use crate::mesh::{MeshFile, MeshFileError, ModelFormat};
+use crate::scene::{Camera, Light, Object, Scene, Shape, ShapeKind, UpAxis, default_scene};
 
 /// Radius of the sphere the model is scaled to fit, world units.
 pub const FIT_RADIUS: f32 = 1.0;
@@ -16,13 +16,21 @@ pub const FIT_RADIUS: f32 = 1.0;
 /// Vertical field of view of the camera, degrees.
 const FOV: f32 = 40.0;
 
-/// Whether `path` names a model file (`.obj`, `.gltf`, `.glb`, any case) rather than a scene.
+/// Whether `path` names a model file (`.obj`, `.stl`, `.ply`, `.gltf`, `.glb`, any case) by
+/// its extension.
 pub fn is_model_path(path: &Path) -> bool {
-    path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
-        ["obj", "gltf", "glb"]
-            .iter()
-            .any(|m| e.eq_ignore_ascii_case(m))
-    })
+    ModelFormat::of_extension(path).is_some()
+}
+
+/// Whether the file at `path` is a model rather than a scene: by its extension, or, when the
+/// extension is not `.toml`, by its content (see [`ModelFormat::sniff`]). A file that cannot
+/// be read is no model here: reading it as a scene says why.
+pub fn is_model_file(path: &Path) -> bool {
+    let toml = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    is_model_path(path) || (!toml && matches!(ModelFormat::of_file(path), Ok(Some(_))))
 }
 
 /// A model file that cannot be shown.
@@ -40,14 +48,15 @@ pub enum ModelSceneError {
 /// names it, with the line).
 fn load_message(path: &Path, error: &MeshFileError) -> String {
     match error {
-        MeshFileError::Obj(_) => error.to_string(),
         MeshFileError::Gltf(_) => format!("{}: {error}", path.display()),
+        _ => error.to_string(),
     }
 }
 
-/// The scene showing the model at `path`, with its mesh path written as the file's name: the
-/// scene's folder is the model's folder.
-pub fn scene_for_model(path: &Path) -> Result<Scene, ModelSceneError> {
+/// The scene showing the model at `path`, turned so that its `up` axis is +Y, with its mesh
+/// path written as the file's name: the scene's folder is the model's folder. An STL model is
+/// drawn flat (its faces are usually a CAD model's facets), any other smooth.
+pub fn scene_for_model(path: &Path, up: UpAxis) -> Result<Scene, ModelSceneError> {
     let model = MeshFile::load(path).map_err(|error| ModelSceneError::Load {
         path: path.to_path_buf(),
         error,
@@ -61,9 +70,14 @@ pub fn scene_for_model(path: &Path) -> Result<Scene, ModelSceneError> {
     }
     let name = path.file_name().map(PathBuf::from).unwrap_or_default();
     let mut object = Object::new(Shape::new(ShapeKind::Mesh, Vec3::ZERO, name.clone()));
-    if let Shape::Mesh { scale, .. } = &mut object.shape {
+    if let Shape::Mesh {
+        scale, up: axis, ..
+    } = &mut object.shape
+    {
         *scale = FIT_RADIUS / radius;
+        *axis = up;
     }
+    object.smooth = !model.flat_by_default();
     object.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
     Ok(Scene {
         camera: framing_camera(),
@@ -105,7 +119,7 @@ mod tests {
 
     #[test]
     fn model_files_are_told_from_scenes_by_their_extension() {
-        for model in ["a.obj", "b.GLB", "dir/c.gltf"] {
+        for model in ["a.obj", "b.GLB", "dir/c.gltf", "d.STL", "e.ply"] {
             assert!(is_model_path(Path::new(model)), "{model}");
         }
         for scene in ["a.toml", "obj", "a.obj.toml", "a"] {

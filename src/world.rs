@@ -9,7 +9,8 @@ use std::time::SystemTime;
 use rayon::prelude::*;
 
 use crate::mesh::{
-    Mesh, MeshFile, MeshFileError, Sphere, UniquePositions, tessellate, tessellate_part,
+    Mesh, MeshFile, MeshFileError, PlyModel, Sphere, StlModel, UniquePositions, tessellate,
+    tessellate_part,
 };
 use crate::scene::{Falloff, Light, Material, Object, Scene, SceneError, SceneWarning, Shape};
 
@@ -67,7 +68,7 @@ pub struct World {
     pub falloff: Option<Falloff>,
 }
 
-/// Loaded model files (OBJ or glTF) keyed by path, reloaded when the file changes on disk.
+/// Loaded model files (OBJ, STL, PLY or glTF) keyed by path, reloaded when the file changes on disk.
 #[derive(Debug, Default)]
 pub struct MeshFileCache {
     models: HashMap<PathBuf, (Option<SystemTime>, Arc<MeshFile>)>,
@@ -160,6 +161,7 @@ impl World {
                             path: full.clone(),
                             error,
                         },
+                        error => SceneError::Model { index, error },
                     })?;
                     inputs.push(full.clone());
                     if let MeshFile::Gltf(gltf) = model.as_ref() {
@@ -217,7 +219,11 @@ impl World {
                         })
                         .collect()
                 }
-                Some(MeshFile::Obj(geometry)) => vec![(
+                Some(
+                    MeshFile::Obj(geometry)
+                    | MeshFile::Stl(StlModel { geometry, .. })
+                    | MeshFile::Ply(PlyModel { geometry, .. }),
+                ) => vec![(
                     WorldObject::new(tessellate(object, Some(geometry)), object.material),
                     WorldObjectSource {
                         object: index,

@@ -234,6 +234,7 @@ proptest! {
             path: path.clone(),
             position: glam::Vec3::ZERO,
             scale: 1.0,
+            up: Default::default(),
         });
         for part in &model.parts {
             let g = &part.geometry;

@@ -156,6 +156,7 @@ proptest! {
                     path: Path::new("fuzz.obj").to_path_buf(),
                     position: glam::Vec3::ZERO,
                     scale: 1.0,
+                    up: Default::default(),
                 });
                 let mesh = tessellate(&object, Some(&model));
                 prop_assert_eq!(mesh.triangle_count(), model.triangles.len());

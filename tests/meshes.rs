@@ -167,6 +167,7 @@ fn obj_polygons_are_triangulated_and_missing_normals_computed() {
         path: quad.clone(),
         position: Vec3::ZERO,
         scale: 1.0,
+        up: Default::default(),
     });
     let mesh = tessellate(&object, Some(&model));
     for n in &mesh.normals {

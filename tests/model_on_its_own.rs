@@ -25,7 +25,8 @@ fn data(name: &str) -> PathBuf {
 fn the_model_is_scaled_into_the_unit_sphere_about_the_origin() {
     for model in ["suzanne.obj", "gltf/box.glb"] {
         let path = data(model);
-        let scene = scene_for_model(&path).unwrap_or_else(|e| panic!("{model}: {e}"));
+        let scene =
+            scene_for_model(&path, Default::default()).unwrap_or_else(|e| panic!("{model}: {e}"));
         let world = World::build(&scene, path.parent().unwrap()).expect("builds");
         let (lo, hi) = world.bounds().expect("something to show");
         let radius = (hi - lo).length() / 2.0;

@@ -139,7 +139,7 @@ fn load_average() -> Option<String> {
 }
 
 fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
-    let (scene, base) = super::load_scene(Some(&args.scene))?;
+    let (scene, base) = super::load_scene(Some(&args.scene), None)?;
     let world = Arc::new(World::build(&scene, &base)?);
     let t = measure(&scene, &world, args.size, args.reps)?;
     outln!(

@@ -3,13 +3,15 @@
 use super::stdout::outln;
 use std::path::Path;
 
-use rastray::scene::ShapeKind;
+use rastray::mesh::MeshFile;
+use rastray::scene::Shape;
 use rastray::text_escape::Escaped;
-use rastray::world::WorldObject;
+use rastray::world::{MeshFileCache, WorldObject};
 
-pub fn run(path: &Path) -> anyhow::Result<()> {
-    let (scene, base) = super::load_scene(Some(path))?;
-    let report = super::build_world(&scene, &base)?;
+pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()> {
+    let (scene, base) = super::load_scene(Some(path), up)?;
+    let mut cache = MeshFileCache::default();
+    let report = super::build_world_cached(&scene, &base, &mut cache)?;
     let world = &report.world;
     super::print_warnings(&scene, world);
     outln!("{}", Escaped(&path.display().to_string()));
@@ -48,15 +50,10 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
             area,
             fmt_vec(object.shape.center())
         );
-        if object.shape.kind() == ShapeKind::Mesh {
-            let colored = parts
-                .iter()
-                .filter(|(b, _)| b.mesh.colors.is_some())
-                .count();
-            outln!(
-                "        vertex colours: {}",
-                vertex_colours(colored, parts.len())
-            );
+        if let Shape::Mesh { path, up, .. } = &object.shape
+            && let Ok(model) = cache.get(&base.join(path))
+        {
+            outln!("        {}, up {up}", Escaped(&describe(&model)));
         }
         for (built, label) in parts {
             if let Some(label) = label {
@@ -97,14 +94,31 @@ pub fn run(path: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Whether a model's `parts` have vertex colours, `colored` of them do: "yes", "none", or how
-/// many parts have them.
-fn vertex_colours(colored: usize, parts: usize) -> String {
-    match colored {
-        0 => "none".to_string(),
-        _ if colored == parts => "yes".to_string(),
-        _ => format!("{colored} of {parts} parts"),
+/// What a model file is and holds beyond its triangles: `STL binary, no vertex colours, no
+/// texture coordinates`.
+fn describe(model: &MeshFile) -> String {
+    let geometries = model.geometries();
+    let colours = geometries.iter().any(|g| g.colors.is_some());
+    let uvs = geometries.iter().any(|g| g.corner_uvs.is_some());
+    let has = |yes: bool, what: &str| {
+        if yes {
+            what.to_string()
+        } else {
+            format!("no {what}")
+        }
+    };
+    let mut text = format!(
+        "{}, {}, {}",
+        model.format(),
+        has(colours, "vertex colours"),
+        has(uvs, "texture coordinates")
+    );
+    if let MeshFile::Ply(ply) = model
+        && let Some(texture) = &ply.texture
+    {
+        text += &format!(", texture {texture} (not drawn)");
     }
+    text
 }
 
 fn fmt_vec(v: glam::Vec3) -> String {

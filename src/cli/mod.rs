@@ -8,6 +8,7 @@ mod graphics_arg;
 mod info;
 mod render;
 mod stdout;
+mod up_arg;
 mod view;
 
 use std::path::{Path, PathBuf};
@@ -15,7 +16,9 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
+use rastray::mesh::EXPECTED_MODEL;
 use rastray::render::Size;
+use rastray::scene::{SceneError, UpAxis};
 use rastray::text_escape::Escaped;
 use rastray::tui::ColorMode;
 use rastray::world::{MeshFileCache, WorldReport};
@@ -28,9 +31,13 @@ use rastray::{Scene, World};
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
-    /// Scene file to open, or a model file (.obj, .gltf, .glb) to look at in a new scene (the
-    /// built-in default scene when absent).
+    /// Scene file to open, or a model file (.obj, .stl, .ply, .gltf, .glb, or one known by its
+    /// content) to look at in a new scene (the built-in default scene when absent).
     pub scene: Option<PathBuf>,
+    /// For a model file opened on its own: the axis of the file that points up (x, y, z, -x,
+    /// -y, -z); CAD files are usually z. Default y.
+    #[arg(long, value_parser = up_arg::parse_up, allow_hyphen_values = true)]
+    pub up: Option<UpAxis>,
     /// Colours of the terminal preview (default: truecolor when COLORTERM says so or the terminal
     /// answers that it has it, else 256). Wins over detection and over NO_COLOR.
     #[arg(long, value_enum)]
@@ -68,8 +75,12 @@ pub enum Command {
     View(view::ViewArgs),
     /// Print a scene's objects, triangle counts and bounds.
     Info {
-        /// Scene file, or a model file (.obj, .gltf, .glb) shown on its own.
+        /// Scene file, or a model file (.obj, .stl, .ply, .gltf, .glb) shown on its own.
         scene: PathBuf,
+        /// For a model file shown on its own: the axis of the file that points up (x, y, z,
+        /// -x, -y, -z). Default y.
+        #[arg(long, value_parser = up_arg::parse_up, allow_hyphen_values = true)]
+        up: Option<UpAxis>,
     },
     /// Repeat the study's two experiments for the three algorithms and write a report.
     Bench(bench::BenchArgs),
@@ -81,14 +92,15 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::View(args)) => view::run(&args).map(|()| ExitCode::SUCCESS),
-        Some(Command::Info { scene }) => info::run(&scene).map(|()| ExitCode::SUCCESS),
+        Some(Command::Info { scene, up }) => info::run(&scene, up).map(|()| ExitCode::SUCCESS),
         Some(Command::Bench(args)) => bench::run_bench(&args).map(|()| ExitCode::SUCCESS),
         None => {
             refuse_dumb_terminal(std::env::var("TERM").ok().as_deref())?;
             let request = cli.graphics.editor_request()?;
             let startup =
                 rastray::tui::color_probe::detect(cli.color.map(ColorMode::from), request);
-            let exit = rastray::tui::run(cli.scene, startup)?;
+            refuse_up_without_model(cli.scene.as_deref(), cli.up)?;
+            let exit = rastray::tui::run(cli.scene, cli.up.unwrap_or_default(), startup)?;
             Ok(ExitCode::from(exit.code()))
         }
     }
@@ -107,17 +119,31 @@ fn refuse_dumb_terminal(term: Option<&str>) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Loads the scene at `path` (or, for a model file, a scene showing it), or the built-in
-/// default scene; returns it with the directory its model paths are relative to.
-pub fn load_scene(path: Option<&Path>) -> anyhow::Result<(Scene, PathBuf)> {
+/// Loads the scene at `path` (or, for a model file, a scene showing it, turned so that its
+/// `up` axis is +Y), or the built-in default scene; returns it with the directory its model
+/// paths are relative to.
+pub fn load_scene(path: Option<&Path>, up: Option<UpAxis>) -> anyhow::Result<(Scene, PathBuf)> {
+    refuse_up_without_model(path, up)?;
     match path {
-        Some(path) if rastray::model_scene::is_model_path(path) => {
-            let scene = rastray::model_scene::scene_for_model(path)?;
+        Some(path) if rastray::model_scene::is_model_file(path) => {
+            let scene = rastray::model_scene::scene_for_model(path, up.unwrap_or_default())?;
             let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
             Ok((scene, base))
         }
         Some(path) => {
-            let scene = rastray::scene::load(path)?;
+            let scene = rastray::scene::load(path).map_err(|error| match error {
+                // Binary data that is no model either: say what was expected.
+                SceneError::Io { error, .. }
+                    if error.kind() == std::io::ErrorKind::InvalidData
+                        && error.to_string().contains("UTF-8") =>
+                {
+                    anyhow::anyhow!(
+                        "{}: neither a scene file (TOML text) nor {EXPECTED_MODEL}",
+                        Escaped(&path.display().to_string())
+                    )
+                }
+                error => error.into(),
+            })?;
             let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
             Ok((scene, base))
         }
@@ -126,6 +152,18 @@ pub fn load_scene(path: Option<&Path>) -> anyhow::Result<(Scene, PathBuf)> {
             std::env::current_dir().context("no working directory")?,
         )),
     }
+}
+
+/// `--up` turns a model opened on its own; a scene says it of each mesh object.
+fn refuse_up_without_model(path: Option<&Path>, up: Option<UpAxis>) -> anyhow::Result<()> {
+    let is_model = path.is_some_and(rastray::model_scene::is_model_file);
+    if up.is_some() && !is_model {
+        anyhow::bail!(
+            "--up applies to a model file opened on its own; in a scene file, give the mesh \
+             object `up = \"z\"`"
+        );
+    }
+    Ok(())
 }
 
 /// Prints the scene's warnings on stderr, one `warning: …` line each, and of each kind past the
@@ -141,7 +179,16 @@ pub fn print_warnings(scene: &Scene, world: &rastray::World) {
 /// Builds the world of `scene` (model paths relative to `base`), printing on stderr what its
 /// model files held that rastray skipped, one `warning:` line each.
 pub fn build_world(scene: &Scene, base: &Path) -> anyhow::Result<WorldReport> {
-    let report = World::build_report(scene, base, &mut MeshFileCache::default())?;
+    build_world_cached(scene, base, &mut MeshFileCache::default())
+}
+
+/// As [`build_world`], keeping the model files read in `cache`.
+pub fn build_world_cached(
+    scene: &Scene,
+    base: &Path,
+    cache: &mut MeshFileCache,
+) -> anyhow::Result<WorldReport> {
+    let report = World::build_report(scene, base, cache)?;
     for warning in &report.warnings {
         eprintln!("warning: {}", Escaped(&warning.to_string()));
     }

@@ -27,9 +27,13 @@ const PROGRESS_DELAY: Duration = Duration::from_millis(400);
 
 #[derive(Debug, Args)]
 pub struct RenderArgs {
-    /// Scene file (TOML), or a model file (.obj, .gltf, .glb) shown on its own; the built-in
-    /// default scene when absent.
+    /// Scene file (TOML), or a model file (.obj, .stl, .ply, .gltf, .glb, or one known by its
+    /// content) shown on its own; the built-in default scene when absent.
     pub scene: Option<PathBuf>,
+    /// For a model file shown on its own: the axis of the file that points up (x, y, z, -x,
+    /// -y, -z); CAD files are usually z. Default y.
+    #[arg(long, value_parser = super::up_arg::parse_up, allow_hyphen_values = true)]
+    pub up: Option<rastray::scene::UpAxis>,
     /// Algorithm.
     #[arg(short, long, value_enum, default_value_t = AlgorithmArg(Algorithm::Phong))]
     pub algorithm: AlgorithmArg,
@@ -81,7 +85,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     // is the scene. Its models are checked once the world has loaded them.
     destination.refuse_inputs(args.scene.as_slice())?;
     let output = Output::for_destination(&destination, args.format.map(|f| f.0), turntable)?;
-    let (scene, base) = super::load_scene(args.scene.as_deref())?;
+    let (scene, base) = super::load_scene(args.scene.as_deref(), args.up)?;
     let options = RenderOptions {
         samples: args.samples,
         shadows: !args.no_shadows,

@@ -24,9 +24,13 @@ const DEFAULT_COLS: u32 = 80;
 
 #[derive(Debug, Args)]
 pub struct ViewArgs {
-    /// Scene file (TOML), or a model file (.obj, .gltf, .glb) shown on its own; the built-in
-    /// default scene when absent.
+    /// Scene file (TOML), or a model file (.obj, .stl, .ply, .gltf, .glb, or one known by its
+    /// content) shown on its own; the built-in default scene when absent.
     pub scene: Option<PathBuf>,
+    /// For a model file shown on its own: the axis of the file that points up (x, y, z, -x,
+    /// -y, -z); CAD files are usually z. Default y.
+    #[arg(long, value_parser = super::up_arg::parse_up, allow_hyphen_values = true)]
+    pub up: Option<rastray::scene::UpAxis>,
     /// Algorithm.
     #[arg(short, long, value_enum, default_value_t = AlgorithmArg(Algorithm::Phong))]
     pub algorithm: AlgorithmArg,
@@ -39,7 +43,7 @@ pub struct ViewArgs {
 }
 
 pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
-    let (scene, base) = super::load_scene(args.scene.as_deref())?;
+    let (scene, base) = super::load_scene(args.scene.as_deref(), args.up)?;
     let stdout = std::io::stdout();
     let is_terminal = stdout.is_terminal();
     let protocol = args

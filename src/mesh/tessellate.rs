@@ -12,11 +12,14 @@ use super::normals::{with_colors_and_normals, with_normals};
 use super::prism::prism;
 use crate::scene::{Object, Shape};
 
-/// The object's placement: rotation (Euler degrees, X then Y then Z) about its centre, then the
-/// move to its centre.
+/// The object's placement: for a mesh, the turn that takes its file's up axis to +Y; then the
+/// rotation (Euler degrees, X then Y then Z) about its centre, then the move to its centre.
 pub fn object_transform(object: &Object) -> Affine3A {
     let r = object.rotation * (std::f32::consts::PI / 180.0);
-    let rotation = Quat::from_euler(EulerRot::ZYX, r.z, r.y, r.x);
+    let mut rotation = Quat::from_euler(EulerRot::ZYX, r.z, r.y, r.x);
+    if let Shape::Mesh { up, .. } = &object.shape {
+        rotation *= up.rotation();
+    }
     Affine3A::from_rotation_translation(rotation, object.shape.center())
 }
 

@@ -47,6 +47,28 @@ pub enum SceneError {
         path: PathBuf,
         error: crate::mesh::gltf::GltfError,
     },
+    /// An STL or PLY model referenced by the scene could not be loaded, or its file is no
+    /// model.
+    #[error("{}", model_message(*index, error))]
+    Model {
+        index: usize,
+        error: crate::mesh::MeshFileError,
+    },
+}
+
+/// The message of a model file of object `index` that could not be loaded: the file and
+/// place first, as for OBJ.
+fn model_message(index: usize, error: &crate::mesh::MeshFileError) -> String {
+    use crate::mesh::MeshFileError;
+    let (path, place, format, problem) = match error {
+        MeshFileError::Stl(e) => (&e.path, e.place, "STL", e.problem.to_string()),
+        MeshFileError::Ply(e) => (&e.path, e.place, "PLY", e.problem.to_string()),
+        other => return format!("cannot load the model of object[{index}]: {other}"),
+    };
+    format!(
+        "{}{place}: cannot load the {format} model of object[{index}]: {problem}",
+        path.display()
+    )
 }
 
 /// `:12` for line 12, nothing when the line is unknown.

@@ -9,6 +9,7 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
 use super::material::Material;
+use super::up_axis::UpAxis;
 use super::vector::optional_vec3;
 
 /// The geometry of an object. Sizes are in world units.
@@ -36,12 +37,14 @@ pub enum Shape {
         size: Vec3,
         segments: u32,
     },
-    /// A triangle mesh from an OBJ file (path relative to the scene file). The model's bounding-box
+    /// A triangle mesh from a model file (OBJ, STL, PLY, glTF; path relative to the scene
+    /// file). The file is turned so that its `up` axis becomes +Y, and the model's bounding-box
     /// centre is placed at `position`, after scaling by `scale` > 0.
     Mesh {
         path: PathBuf,
         position: Vec3,
         scale: f32,
+        up: UpAxis,
     },
 }
 
@@ -106,6 +109,19 @@ impl Shape {
         }
     }
 
+    /// Whether an object of this shape is smooth when the scene does not say: meshes are, but
+    /// for STL files (named `.stl`, any case), whose faces are usually a CAD model's flat
+    /// facets; the other shapes are flat.
+    pub fn smooth_by_default(&self) -> bool {
+        match self {
+            Shape::Mesh { path, .. } => !path
+                .extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| e.eq_ignore_ascii_case("stl")),
+            _ => false,
+        }
+    }
+
     /// A sensible unit-sized shape of `kind` at `center` (meshes need a path).
     pub fn new(kind: ShapeKind, center: Vec3, path: PathBuf) -> Shape {
         match kind {
@@ -128,6 +144,7 @@ impl Shape {
                 path,
                 position: center,
                 scale: 1.0,
+                up: UpAxis::Y,
             },
         }
     }
@@ -146,13 +163,14 @@ pub struct Object {
     /// Surface material.
     pub material: Material,
     /// Smooth shading: average normals of adjacent faces meeting at less than the crease angle.
+    /// By default meshes are smooth, but for an STL file (named `.stl`), and other shapes flat.
     pub smooth: bool,
 }
 
 impl Object {
     /// A new object with the default material and no rotation.
     pub fn new(shape: Shape) -> Object {
-        let smooth = matches!(shape, Shape::Mesh { .. });
+        let smooth = shape.smooth_by_default();
         Object {
             name: None,
             shape,
@@ -204,6 +222,8 @@ pub struct ObjectRecord {
     position: Option<Vec3>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     scale: Option<f32>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    up: Option<UpAxis>,
     #[serde(
         default,
         deserialize_with = "optional_vec3",
@@ -247,6 +267,7 @@ impl TryFrom<ObjectRecord> for Object {
                 stray("path", r.path.is_some())?;
                 stray("position", r.position.is_some())?;
                 stray("scale", r.scale.is_some())?;
+                stray("up", r.up.is_some())?;
                 Shape::Icosahedron {
                     center: r.center.unwrap_or(Vec3::ZERO),
                     radius: r.radius.ok_or_else(|| required("radius"))?,
@@ -259,6 +280,7 @@ impl TryFrom<ObjectRecord> for Object {
                 stray("path", r.path.is_some())?;
                 stray("position", r.position.is_some())?;
                 stray("scale", r.scale.is_some())?;
+                stray("up", r.up.is_some())?;
                 let center = r.center.unwrap_or(Vec3::ZERO);
                 let size = r.size.ok_or_else(|| required("size"))?;
                 let segments = r.segments.unwrap_or(1);
@@ -286,10 +308,11 @@ impl TryFrom<ObjectRecord> for Object {
                     path: r.path.ok_or_else(|| required("path"))?,
                     position: r.position.unwrap_or(Vec3::ZERO),
                     scale: r.scale.unwrap_or(1.0),
+                    up: r.up.unwrap_or_default(),
                 }
             }
         };
-        let smooth = r.smooth.unwrap_or(kind == ShapeKind::Mesh);
+        let smooth = r.smooth.unwrap_or_else(|| shape.smooth_by_default());
         Ok(Object {
             name: r.name,
             shape,
@@ -313,6 +336,7 @@ impl From<Object> for ObjectRecord {
             path: None,
             position: None,
             scale: None,
+            up: None,
             rotation: (o.rotation != Vec3::ZERO).then_some(o.rotation),
             smooth: Some(o.smooth),
             material: o.material,
@@ -345,10 +369,12 @@ impl From<Object> for ObjectRecord {
                 path,
                 position,
                 scale,
+                up,
             } => {
                 r.path = Some(path);
                 r.position = Some(position);
                 r.scale = Some(scale);
+                r.up = (up != UpAxis::default()).then_some(up);
             }
         }
         r

@@ -42,7 +42,7 @@ pub enum Problem {
     #[error("must not be parallel to the view direction")]
     UpAlongView,
     /// A mesh object without a file.
-    #[error("must name an OBJ file")]
+    #[error("must name a model file")]
     NoPath,
 }
 
@@ -224,6 +224,7 @@ pub fn validate(scene: &Scene) -> Check {
                 path,
                 position,
                 scale,
+                ..
             } => {
                 if path.as_os_str().is_empty() {
                     fail(&op.clone().key("path"), Problem::NoPath)?;

@@ -10,7 +10,7 @@ use glam::Vec3;
 use super::selection::Item;
 use super::text::clean;
 use crate::scene::limits::{self, CountLimits, Limits};
-use crate::scene::{Camera, Light, Object, Scene, Shape, validate};
+use crate::scene::{Camera, Light, Object, Scene, Shape, UpAxis, validate};
 
 /// One component of a vector field.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -39,6 +39,8 @@ pub enum Key {
     Segments,
     Path,
     Scale,
+    /// The axis of a mesh's file that points up.
+    Up,
     Rotation(Axis),
     Color(Axis),
     Diffuse,
@@ -107,6 +109,7 @@ impl Key {
             Key::Segments => "segments".into(),
             Key::Path => "path".into(),
             Key::Scale => "scale".into(),
+            Key::Up => "up".into(),
             Key::Rotation(a) => xyz("rotation", a),
             Key::Color(a) => rgb("color", a),
             Key::Diffuse => "diffuse".into(),
@@ -143,7 +146,7 @@ impl Key {
             Key::Subdivisions => Count(limits::SUBDIVISIONS),
             Key::Segments => Count(limits::SEGMENTS),
             Key::MaxDepth => Count(limits::REFLECTION_DEPTH),
-            Key::Name | Key::Path | Key::Smooth => return None,
+            Key::Name | Key::Path | Key::Smooth | Key::Up => return None,
         })
     }
 }
@@ -172,6 +175,7 @@ enum Slot<'a> {
     Flag(&'a mut bool),
     Name(&'a mut Option<String>),
     Path(&'a mut PathBuf),
+    Axis(&'a mut UpAxis),
 }
 
 fn component(v: &mut Vec3, a: Axis) -> &mut f32 {
@@ -239,7 +243,7 @@ impl Part {
                         keys.extend(xyz(Key::Size));
                         keys.push(Key::Segments);
                     }
-                    Shape::Mesh { .. } => keys.extend([Key::Path, Key::Scale]),
+                    Shape::Mesh { .. } => keys.extend([Key::Path, Key::Scale, Key::Up]),
                 }
                 keys.extend(xyz(Key::Rotation));
                 keys.extend(xyz(Key::Color));
@@ -296,6 +300,7 @@ impl Part {
                     ) => Slot::Count(segments),
                     (Key::Path, Shape::Mesh { path, .. }) => Slot::Path(path),
                     (Key::Scale, Shape::Mesh { scale, .. }) => Slot::Number(scale),
+                    (Key::Up, Shape::Mesh { up, .. }) => Slot::Axis(up),
                     (Key::Rotation(a), _) => Slot::Number(component(&mut o.rotation, a)),
                     (Key::Color(a), _) => Slot::Number(component(&mut m.color, a)),
                     (Key::Diffuse, _) => Slot::Number(&mut m.diffuse),
@@ -317,6 +322,7 @@ impl Part {
             Slot::Flag(b) => Value::Flag(*b),
             Slot::Name(n) => Value::Text(n.clone().unwrap_or_default()),
             Slot::Path(p) => Value::Text(p.display().to_string()),
+            Slot::Axis(a) => Value::Text(a.name().to_string()),
         })
     }
 }
@@ -352,6 +358,11 @@ pub fn stepped(scene: &Scene, item: Item, key: Key, times: i32) -> Result<Scene,
             *n = new as u32;
         }
         (Slot::Flag(b), _) => *b = !*b,
+        (Slot::Axis(a), _) => {
+            let all = UpAxis::ALL;
+            let at = all.iter().position(|x| x == a).unwrap_or(0) as i64;
+            *a = all[(at + times as i64).rem_euclid(all.len() as i64) as usize];
+        }
         (Slot::Name(_) | Slot::Path(_), _) => {
             return Err("press Enter to type a new value".into());
         }
@@ -388,9 +399,13 @@ pub fn typed(scene: &Scene, item: Item, key: Key, text: &str) -> Result<Scene, R
             let name = clean(t);
             *n = (!name.is_empty()).then_some(name);
         }
+        Slot::Axis(a) => {
+            *a = UpAxis::from_name(t)
+                .ok_or_else(|| format!("`{t}` is not an axis: x, y, z, -x, -y or -z"))?;
+        }
         Slot::Path(p) => {
             if t.is_empty() {
-                return Err("type the path of an OBJ file".into());
+                return Err("type the path of a model file".into());
             }
             *p = PathBuf::from(t);
         }
@@ -404,4 +419,39 @@ fn checked(scene: &Scene, item: Item, part: Part) -> Result<Scene, Refusal> {
     part.store(&mut new, item);
     validate(&new).map_err(|e| e.problem.to_string())?;
     Ok(new)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{ShapeKind, default_scene};
+
+    #[test]
+    fn a_meshs_up_axis_steps_through_the_six_and_takes_a_typed_name() {
+        let mut scene = default_scene();
+        scene.objects.push(Object::new(Shape::new(
+            ShapeKind::Mesh,
+            glam::Vec3::ZERO,
+            "part.stl".into(),
+        )));
+        let item = Item::Object(scene.objects.len() - 1);
+        let up = |scene: &Scene| Part::of(scene, item).unwrap().value(Key::Up);
+        assert_eq!(up(&scene), Some(Value::Text("y".into())));
+        let once = stepped(&scene, item, Key::Up, 1).unwrap();
+        assert_eq!(up(&once), Some(Value::Text("z".into())));
+        let back = stepped(&scene, item, Key::Up, -1).unwrap();
+        assert_eq!(up(&back), Some(Value::Text("x".into())));
+        let written = typed(&scene, item, Key::Up, " -Z ").unwrap();
+        assert_eq!(up(&written), Some(Value::Text("-z".into())));
+        assert!(
+            typed(&scene, item, Key::Up, "w")
+                .unwrap_err()
+                .contains("not an axis")
+        );
+        // Only meshes have one.
+        assert_eq!(
+            Part::of(&scene, Item::Object(0)).unwrap().value(Key::Up),
+            None
+        );
+    }
 }

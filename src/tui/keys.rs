@@ -211,7 +211,7 @@ pub const KEYS: &[Row] = &[
     Row {
         context: Anywhere,
         bindings: &[act(&[ch('a')], Action::AddMenu)],
-        what: "add an icosahedron, box, prism, light or OBJ/glTF mesh",
+        what: "add a shape, light or mesh (OBJ, STL, PLY, glTF)",
     },
     Row {
         context: Anywhere,

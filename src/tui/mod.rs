@@ -72,9 +72,13 @@ enum Event {
 /// quits or the process receives SIGTERM, SIGHUP or SIGINT. Unsaved edits are kept in the
 /// recovery file meanwhile, and written there at once when a signal or an error ends the editor.
 /// The preview is drawn as `startup` says (see [`color_probe::detect`]).
-pub fn run(scene_path: Option<PathBuf>, startup: color_probe::Startup) -> Result<Exit, TuiError> {
+pub fn run(
+    scene_path: Option<PathBuf>,
+    up: crate::scene::UpAxis,
+    startup: color_probe::Startup,
+) -> Result<Exit, TuiError> {
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
-    let mut app = load(scene_path.as_deref())?
+    let mut app = load(scene_path.as_deref(), up)?
         .with_color(startup.color)
         .with_plain_interface(no_color)
         .with_graphics(startup.graphics.clone());
@@ -245,11 +249,12 @@ pub fn run(scene_path: Option<PathBuf>, startup: color_probe::Startup) -> Result
 
 /// The editor on the scene at `path`; a path that does not exist yet starts a new scene there
 /// from the built-in one (written on the first save), as text editors do with a new file name.
-/// A model file (OBJ, glTF) starts a new, unnamed scene showing it.
-fn load(path: Option<&Path>) -> Result<App, TuiError> {
+/// A model file (OBJ, STL, PLY, glTF; by extension or content) starts a new, unnamed scene
+/// showing it, turned so that its `up` axis is +Y.
+fn load(path: Option<&Path>, up: crate::scene::UpAxis) -> Result<App, TuiError> {
     Ok(match path {
-        Some(p) if crate::model_scene::is_model_path(p) => {
-            let scene = crate::model_scene::scene_for_model(p)?;
+        Some(p) if crate::model_scene::is_model_file(p) => {
+            let scene = crate::model_scene::scene_for_model(p, up)?;
             let mut app = App::new(scene, None, document::folder_of(p));
             let file = p.file_name().unwrap_or_default().to_string_lossy();
             app.doc.name_untitled(format!("new scene of {file}"));

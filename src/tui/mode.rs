@@ -31,7 +31,7 @@ pub enum PromptPurpose {
     SaveAs,
     /// Open another scene file.
     Open,
-    /// Add a mesh from an OBJ or glTF file.
+    /// Add a mesh from a model file (OBJ, STL, PLY, glTF, GLB).
     ObjPath,
 }
 
@@ -109,7 +109,7 @@ impl AddKind {
             AddKind::Box => "box",
             AddKind::Prism => "prism",
             AddKind::Light => "point light",
-            AddKind::Mesh => "mesh (OBJ, glTF)…",
+            AddKind::Mesh => "mesh: OBJ STL PLY glTF…",
         }
     }
 }

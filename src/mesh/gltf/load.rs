@@ -43,6 +43,8 @@ pub struct GltfModel {
     pub warnings: Vec<ImportWarning>,
     /// The buffer files read beside the model, in the order the document names them.
     pub buffer_files: Vec<PathBuf>,
+    /// Whether the file is a GLB container (else glTF's JSON).
+    pub binary: bool,
 }
 
 impl GltfModel {
@@ -145,6 +147,7 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
         parts,
         warnings,
         buffer_files,
+        binary: bytes.starts_with(b"glTF"),
     })
 }
 

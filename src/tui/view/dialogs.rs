@@ -69,7 +69,7 @@ impl Widget for Prompt<'_> {
             PromptPurpose::SaveAs => "Save scene as",
             PromptPurpose::Open if self.2 => "Open scene (unsaved edits are dropped)",
             PromptPurpose::Open => "Open scene",
-            PromptPurpose::ObjPath => "OBJ or glTF file (relative to the scene's folder)",
+            PromptPurpose::ObjPath => "OBJ, STL, PLY or glTF file (relative to the scene's folder)",
         };
         let popup = centered(area, 64, 5);
         Clear.render(popup, buf);

@@ -1,0 +1,187 @@
+//! PLY import (Stanford polygon files): ASCII and binary of either byte order, every scalar
+//! type, properties in any order, elements rastray does not read (and their lists) passed
+//! over. From the `vertex` element: `x y z`, and when present `nx ny nz`, `red green blue`
+//! and texture coordinates (`s t`, `u v` or `texture_u texture_v`); from the `face` element:
+//! `vertex_indices` (or `vertex_index`), polygons fanned into triangles, and `texcoord` (u v
+//! of each corner, as MeshLab writes), which wins over the vertices' texture coordinates. Colours are sRGB,
+//! whatever their type (bytes, or floats in 0..=1), and are decoded to linear. The image a
+//! `comment TextureFile NAME` names is recorded, not read.
+//!
+//! Memory: declared counts are refused before anything is allocated unless they fit in the
+//! file (count × the smallest record ≤ bytes left); the file streams through one buffer.
+
+mod ascii;
+mod binary;
+mod collect;
+mod error;
+mod header;
+mod plan;
+mod scalar;
+
+use std::io::{BufReader, Read};
+use std::path::Path;
+
+pub use error::{PlyError, PlyProblem};
+pub use header::PlyEncoding;
+
+use self::binary::Role;
+use self::collect::Collector;
+use self::header::{Element, Header, read_header};
+use self::plan::{Plan, face_plan, skip_plan, vertex_plan};
+use super::byte_source::ByteSource;
+use super::geometry::ModelGeometry;
+use super::model_error::{Place, grew};
+use crate::world::MAX_TRIANGLES;
+
+/// Most vertices a PLY file may declare: three for each triangle a scene may hold.
+pub const MAX_VERTICES: u64 = 3 * MAX_TRIANGLES;
+
+/// A PLY file's geometry, how it was written, and the texture it names.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlyModel {
+    pub geometry: ModelGeometry,
+    pub encoding: PlyEncoding,
+    /// The image `comment TextureFile NAME` names, as written (not read: textures are not
+    /// drawn yet).
+    pub texture: Option<String>,
+}
+
+/// Reads the PLY file at `path`: a regular file of at most [`MAX_MODEL_BYTES`](crate::input_file::MAX_MODEL_BYTES), at most
+/// [`MAX_VERTICES`] vertices within the scene's coordinate limits and at most
+/// [`MAX_TRIANGLES`] triangles. Errors name the file and the line (header, ASCII body) or byte
+/// offset (binary body).
+pub fn load_ply(path: &Path) -> Result<PlyModel, PlyError> {
+    let fail = |(place, problem)| PlyError {
+        path: path.to_path_buf(),
+        place,
+        problem,
+    };
+    let io = |e| fail((Place::File, PlyProblem::Io(e)));
+    let (mut source, size) = ByteSource::open_model(path).map_err(io)?;
+    let header = read_header(&mut source).map_err(fail)?;
+    let (vertex, vertex_plan, attributes) =
+        vertex_element(&header, size, source.offset()).map_err(fail)?;
+    let faces = header
+        .elements
+        .iter()
+        .position(|e| e.name == "face" && e.count > 0);
+    let Some(face) = faces else {
+        return Err(fail((
+            Place::File,
+            PlyProblem::PointCloud {
+                vertices: header.elements[vertex].count,
+            },
+        )));
+    };
+    let (face_plan, face_uvs) = face_plan(&header.elements[face]).ok_or_else(|| {
+        fail((
+            Place::Line(header.elements[face].line),
+            PlyProblem::NoIndexList,
+        ))
+    })?;
+    let mut collector = Collector::new(
+        header.elements[vertex].count,
+        header.elements[face].count,
+        attributes,
+        face_uvs,
+        MAX_TRIANGLES,
+    );
+    let plans: Vec<(Plan, Role)> = header
+        .elements
+        .iter()
+        .enumerate()
+        .map(|(i, element)| {
+            if i == vertex {
+                (vertex_plan.clone(), Role::Vertex)
+            } else if i == face {
+                (face_plan.clone(), Role::Face)
+            } else {
+                (skip_plan(element), Role::Skip)
+            }
+        })
+        .collect();
+    read_body(&mut source, size, &header, plans, &mut collector).map_err(fail)?;
+    if source.get_ref().limit() == 0 {
+        return Err(io(grew()));
+    }
+    let geometry = collector
+        .finish()
+        .map_err(|problem| fail((Place::File, problem)))?;
+    Ok(PlyModel {
+        geometry,
+        encoding: header.encoding,
+        texture: header.texture,
+    })
+}
+
+/// The vertex element's index, plan and attributes, once every element's count is known to
+/// fit in the `size − body` bytes of the body.
+fn vertex_element(
+    header: &Header,
+    size: u64,
+    body: u64,
+) -> Result<(usize, Plan, plan::VertexAttributes), (Place, PlyProblem)> {
+    let available = size.saturating_sub(body);
+    for element in &header.elements {
+        let record = element.min_record_bytes(header.encoding);
+        if element.count.saturating_mul(record) > available {
+            return Err((
+                Place::Line(element.line),
+                PlyProblem::CountTooLarge {
+                    element: element.name.clone(),
+                    count: element.count,
+                    record,
+                    available,
+                },
+            ));
+        }
+    }
+    let no_positions = (Place::File, PlyProblem::NoPositions);
+    let vertex = header
+        .elements
+        .iter()
+        .position(|e| e.name == "vertex")
+        .ok_or(no_positions)?;
+    let element: &Element = &header.elements[vertex];
+    let (plan, attributes) =
+        vertex_plan(element).ok_or((Place::Line(element.line), PlyProblem::NoPositions))?;
+    if element.count > MAX_VERTICES {
+        return Err((
+            Place::Line(element.line),
+            PlyProblem::TooManyVertices {
+                count: element.count,
+                limit: MAX_VERTICES,
+            },
+        ));
+    }
+    Ok((vertex, plan, attributes))
+}
+
+/// Reads every element of the body in order.
+fn read_body<R: Read>(
+    source: &mut ByteSource<R>,
+    size: u64,
+    header: &Header,
+    plans: Vec<(Plan, Role)>,
+    collector: &mut Collector,
+) -> Result<(), (Place, PlyProblem)> {
+    match header.encoding {
+        PlyEncoding::Ascii => {
+            let mut lines = ascii::Lines::new(BufReader::new(source), header.lines);
+            for (element, (plan, role)) in header.elements.iter().zip(plans) {
+                ascii::read_element(&mut lines, element, &plan, role, collector)?;
+            }
+        }
+        PlyEncoding::BinaryLittleEndian => {
+            for (element, (plan, role)) in header.elements.iter().zip(plans) {
+                binary::read_element::<R, false>(source, size, element, &plan, role, collector)?;
+            }
+        }
+        PlyEncoding::BinaryBigEndian => {
+            for (element, (plan, role)) in header.elements.iter().zip(plans) {
+                binary::read_element::<R, true>(source, size, element, &plan, role, collector)?;
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,115 @@
+//! STL import, binary and ASCII. A file is binary when its size is exactly the 84 + 50 × count
+//! that the triangle count at byte 80 asks for, whatever its header says (binary exporters
+//! often begin the header with `solid`); otherwise it is ASCII when it is text beginning with
+//! `solid`. Corners at bit-identical positions are welded into one vertex (−0 meets 0), so
+//! that smooth normals and crease angles work; the file's facet normals are not read: normals
+//! come from the faces.
+//!
+//! Memory: the result (12 bytes a distinct position, 12 a triangle) and the welding table (16
+//! bytes a distinct position, at most half full); the file streams through one 256 KiB buffer.
+
+mod ascii;
+mod binary;
+mod error;
+
+use std::fmt;
+use std::io::BufReader;
+use std::path::Path;
+
+pub use error::{StlError, StlProblem};
+
+use super::byte_source::ByteSource;
+use super::geometry::ModelGeometry;
+use super::model_error::{Place, grew};
+use super::model_format::{binary_stl_size, is_ascii_stl};
+use super::weld::{Welder, positions_of};
+use crate::world::MAX_TRIANGLES;
+
+/// How an STL file was written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StlEncoding {
+    Binary,
+    Ascii,
+}
+
+impl fmt::Display for StlEncoding {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            StlEncoding::Binary => "binary",
+            StlEncoding::Ascii => "ASCII",
+        })
+    }
+}
+
+/// An STL file's triangles, welded.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StlModel {
+    /// Positions and triangles; no normals, colours or texture coordinates (STL has none that
+    /// rastray reads).
+    pub geometry: ModelGeometry,
+    pub encoding: StlEncoding,
+}
+
+/// Reads the STL file at `path`: a regular file of at most [`MAX_MODEL_BYTES`](crate::input_file::MAX_MODEL_BYTES) holding at most
+/// [`MAX_TRIANGLES`] triangles, every coordinate within the scene's coordinate limits. Errors
+/// name the file and the line (ASCII) or byte offset (binary).
+pub fn load_stl(path: &Path) -> Result<StlModel, StlError> {
+    let fail = |(place, problem)| StlError {
+        path: path.to_path_buf(),
+        place,
+        problem,
+    };
+    let io = |e| fail((Place::File, StlProblem::Io(e)));
+    let (mut source, size) = ByteSource::open_model(path).map_err(io)?;
+    let head = source.ahead(512).map_err(io)?;
+    let mut triangles = Vec::new();
+    let (welder, encoding) = if binary_stl_size(head) == Some(size) {
+        let count = u32::from_le_bytes([head[80], head[81], head[82], head[83]]);
+        if count as u64 > MAX_TRIANGLES {
+            return Err(fail((
+                Place::Byte(80),
+                StlProblem::TooManyTriangles {
+                    limit: MAX_TRIANGLES,
+                },
+            )));
+        }
+        // A closed mesh has about half as many vertices as triangles.
+        let mut welder = Welder::with_capacity(count as usize / 2);
+        triangles.reserve_exact(count as usize);
+        source.consume(84);
+        binary::read_triangles(&mut source, count, &mut welder, &mut triangles).map_err(fail)?;
+        (welder, StlEncoding::Binary)
+    } else if is_ascii_stl(head) {
+        // About 250 bytes of text a facet.
+        let mut welder = Welder::with_capacity((size / 500) as usize);
+        let mut reader = BufReader::with_capacity(1 << 16, &mut source);
+        ascii::read_solids(&mut reader, &mut welder, &mut triangles, MAX_TRIANGLES)
+            .map_err(fail)?;
+        (welder, StlEncoding::Ascii)
+    } else if size < 84 {
+        return Err(fail((Place::File, StlProblem::TooShort { size })));
+    } else {
+        let count = u32::from_le_bytes([head[80], head[81], head[82], head[83]]);
+        return Err(fail(if size < 84 + 50 * count as u64 {
+            (Place::Byte(size), StlProblem::CutShort { count, size })
+        } else {
+            (Place::File, StlProblem::CountDisagrees { count, size })
+        }));
+    };
+    if source.get_ref().limit() == 0 {
+        return Err(io(grew()));
+    }
+    if triangles.is_empty() {
+        return Err(fail((Place::File, StlProblem::NoTriangles)));
+    }
+    Ok(StlModel {
+        geometry: ModelGeometry {
+            positions: positions_of(welder.into_keys()),
+            triangles,
+            corner_normals: None,
+            colors: None,
+            corner_uvs: None,
+        },
+        encoding,
+    })
+}
