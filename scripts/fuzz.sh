@@ -8,10 +8,11 @@ total=${1:-1000000}
 # Build once, then run the test binaries themselves: the sources may change meanwhile.
 binaries=$(cargo test --release --no-run --message-format=json \
         --test fuzz_scene --test fuzz_obj --test fuzz_stl --test fuzz_ply --test fuzz_gltf \
-        --test fuzz_editor |
+        --test fuzz_gltf_structure --test fuzz_editor |
     grep -o '"executable":"[^"]*"' | sed 's/"executable":"\(.*\)"/\1/')
 started=$(date +%s)
-for target in fuzz_scene:30 fuzz_obj:20 fuzz_stl:15 fuzz_ply:15 fuzz_gltf:12 fuzz_editor:8; do
+for target in fuzz_scene:28 fuzz_obj:18 fuzz_stl:13 fuzz_ply:13 fuzz_gltf:12 fuzz_gltf_structure:8 \
+    fuzz_editor:8; do
     name=${target%%:*}
     cases=$((total * ${target#*:} / 100))
     binary=$(printf '%s\n' "$binaries" | grep "/$name-")
