@@ -84,57 +84,49 @@ const OUTSIDE: [&str; 6] = [
     "..\\outside\\secret.bin",
 ];
 
-fn case() -> impl Strategy<Value = Case> {
-    let nodes = prop_oneof![
+fn nodes() -> impl Strategy<Value = Nodes> {
+    prop_oneof![
         (0u32..9, 1u32..4).prop_map(|(depth, branching)| Nodes::Tree { depth, branching }),
         (1usize..6, 0usize..6).prop_map(|(length, back)| Nodes::Cycle { length, back }),
         prop::collection::vec(-2i64..8, 0..6).prop_map(|children| Nodes::Broken { children }),
-    ];
-    let source = prop_oneof![
+    ]
+}
+
+fn source() -> impl Strategy<Value = BufferSource> {
+    prop_oneof![
         2 => any::<u8>().prop_map(|mangle| BufferSource::DataUri { mangle }),
         2 => Just(BufferSource::Beside),
         2 => (0..OUTSIDE.len()).prop_map(BufferSource::Outside),
         2 => Just(BufferSource::Glb),
-    ];
-    let count = prop_oneof![
-        4 => Just(36u64),
-        1 => 0u64..40,
-        1 => prop::sample::select(vec![u32::MAX as u64, 1 << 40, 1_000_000_000]),
-    ];
-    (
-        nodes,
-        source,
-        count,
-        prop_oneof![4 => Just(0u64), 1 => 0u64..200, 1 => Just(u32::MAX as u64)],
-        prop::option::of(prop_oneof![Just(2u64), Just(1), Just(4), Just(255), Just(1 << 31)]),
-        prop::option::of(prop_oneof![0u64..10, Just(u32::MAX as u64)]),
-        prop_oneof![4 => Just(0u64), 1 => 1u64..4, 1 => Just(1 << 30)],
-        prop_oneof![4 => Just(0i64), 1 => -64i64..64, 1 => Just(i32::MAX as i64)],
-        prop_oneof![4 => Just(0i64), 1 => -64i64..64, 1 => Just(i32::MAX as i64)],
-    )
-        .prop_map(
-            |(
-                nodes,
-                source,
-                index_count,
-                index_offset,
-                stride,
-                sparse,
-                declared_scale,
-                json_chunk_delta,
-                bin_chunk_delta,
-            )| Case {
-                nodes,
-                source,
-                index_count,
-                index_offset,
-                stride,
-                sparse,
-                declared_scale,
-                json_chunk_delta,
-                bin_chunk_delta,
-            },
-        )
+    ]
+}
+
+/// A chunk length field's change: mostly none, sometimes a little, sometimes far past the file.
+fn chunk_delta() -> impl Strategy<Value = i64> {
+    prop_oneof![4 => Just(0i64), 1 => -64i64..64, 1 => Just(i32::MAX as i64)]
+}
+
+prop_compose! {
+    fn case()(
+        nodes in nodes(),
+        source in source(),
+        index_count in prop_oneof![
+            4 => Just(36u64),
+            1 => 0u64..40,
+            1 => prop::sample::select(vec![u32::MAX as u64, 1 << 40, 1_000_000_000]),
+        ],
+        index_offset in prop_oneof![4 => Just(0u64), 1 => 0u64..200, 1 => Just(u32::MAX as u64)],
+        stride in prop::option::of(prop_oneof![Just(2u64), Just(1), Just(4), Just(255), Just(1 << 31)]),
+        sparse in prop::option::of(prop_oneof![0u64..10, Just(u32::MAX as u64)]),
+        declared_scale in prop_oneof![4 => Just(0u64), 1 => 1u64..4, 1 => Just(1 << 30)],
+        json_chunk_delta in chunk_delta(),
+        bin_chunk_delta in chunk_delta(),
+    ) -> Case {
+        Case {
+            nodes, source, index_count, index_offset, stride, sparse, declared_scale,
+            json_chunk_delta, bin_chunk_delta,
+        }
+    }
 }
 
 /// The nodes array and the scene's root list for `shape`.
@@ -162,7 +154,11 @@ fn nodes_of(shape: &Nodes) -> (Vec<Value>, Vec<usize>) {
         Nodes::Cycle { length, back } => {
             let nodes = (0..*length)
                 .map(|i| {
-                    let child = if i + 1 < *length { i + 1 } else { back % length };
+                    let child = if i + 1 < *length {
+                        i + 1
+                    } else {
+                        back % length
+                    };
                     json!({ "mesh": 0, "children": [child] })
                 })
                 .collect();
@@ -255,13 +251,15 @@ fn build(case: &Case, buffer: &[u8]) -> (&'static str, Vec<u8>, Option<Vec<u8>>)
 fn glb(case: &Case, json: &[u8], bin: &[u8]) -> Vec<u8> {
     let pad = |bytes: &[u8], fill: u8| {
         let mut v = bytes.to_vec();
-        while v.len() % 4 != 0 {
+        while !v.len().is_multiple_of(4) {
             v.push(fill);
         }
         v
     };
     let (json, bin) = (pad(json, b' '), pad(bin, 0));
-    let field = |len: usize, delta: i64| (len as i64).saturating_add(delta).clamp(0, u32::MAX as i64) as u32;
+    let field = |len: usize, delta: i64| {
+        (len as i64).saturating_add(delta).clamp(0, u32::MAX as i64) as u32
+    };
     let mut out = Vec::new();
     let total = 12 + 8 + json.len() + 8 + bin.len();
     out.extend_from_slice(b"glTF");
@@ -287,18 +285,24 @@ fn layout() -> tempfile::TempDir {
     dir
 }
 
+/// The case's files written into a fresh [`layout`]: the folder, and the model's path.
+fn written(case: &Case) -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = layout();
+    let (name, model, beside) = build(case, &cube_buffer());
+    let path = dir.path().join("model").join(name);
+    std::fs::write(&path, model).unwrap();
+    if let Some(bytes) = beside {
+        std::fs::write(dir.path().join("model/cube data.bin"), bytes).unwrap();
+    }
+    (dir, path)
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::default())]
 
     #[test]
     fn structured_gltf_files_load_or_are_refused(case in case()) {
-        let dir = layout();
-        let (name, model, beside) = build(&case, &cube_buffer());
-        let path = dir.path().join("model").join(name);
-        std::fs::write(&path, &model).unwrap();
-        if let Some(bytes) = beside {
-            std::fs::write(dir.path().join("model/cube data.bin"), bytes).unwrap();
-        }
+        let (_dir, path) = written(&case);
         // Returning at all shows the FIFO outside was never opened for reading.
         let result = load_gltf(&path);
         if let BufferSource::Outside(_) = case.source {
@@ -348,13 +352,7 @@ fn the_plain_case_loads_from_every_source() {
             json_chunk_delta: 0,
             bin_chunk_delta: 0,
         };
-        let dir = layout();
-        let (name, model, beside) = build(&case, &cube_buffer());
-        let path = dir.path().join("model").join(name);
-        std::fs::write(&path, &model).unwrap();
-        if let Some(bytes) = beside {
-            std::fs::write(dir.path().join("model/cube data.bin"), bytes).unwrap();
-        }
+        let (_dir, path) = written(&case);
         let model = load_gltf(&path).unwrap_or_else(|e| panic!("{case:?}: {e}"));
         assert_eq!(model.parts.len(), 7, "1 + 2 + 4 nodes");
         assert_eq!(model.triangle_count(), 7 * 12);
