@@ -146,6 +146,36 @@ struct Layer {
     patterns: Vec<Pattern>,
 }
 
+impl Layer {
+    /// Pixels in one sub-cell.
+    fn pixels_per_sub(&self) -> u32 {
+        SAMPLES_X * SAMPLES_Y / (self.grid.0 * self.grid.1)
+    }
+
+    /// 1/n for a part of k sub-cells (n its pixels), by k from 0 to 8; 0 for an empty part.
+    fn reciprocals(&self) -> [f64; 9] {
+        const fn table(per_sub: u32) -> [f64; 9] {
+            let mut r = [0.0; 9];
+            let mut k = 1;
+            while k < 9 {
+                r[k] = 1.0 / (k as u32 * per_sub) as f64;
+                k += 1;
+            }
+            r
+        }
+        // The four grids' sub-cells hold 18 (2×2), 12 (2×3) or 9 (2×4) pixels.
+        const HALVES: [f64; 9] = table(18);
+        const THIRDS: [f64; 9] = table(12);
+        const QUARTERS: [f64; 9] = table(9);
+        match self.pixels_per_sub() {
+            18 => HALVES,
+            12 => THIRDS,
+            9 => QUARTERS,
+            per_sub => table(per_sub),
+        }
+    }
+}
+
 /// Quadrant glyphs by mask (bit 0 upper left, 1 upper right, 2 lower left, 3 lower right).
 const QUADRANTS: [char; 16] = [
     ' ', '▘', '▝', '▀', '▖', '▌', '▞', '▛', '▗', '▚', '▐', '▜', '▄', '▙', '▟', '█',
@@ -203,13 +233,18 @@ impl FineSums {
     /// Sums per sub-cell of a 2 × `rows` grid (`rows` divides 12), index `row * 2 + column`;
     /// the first `2 * rows` entries are used.
     fn grid(&self, rows: u32) -> [[u32; 3]; 8] {
-        let per = (SAMPLES_Y / rows) as usize;
         let mut subs = [[0u32; 3]; 8];
-        for (i, strip) in self.strips.iter().enumerate() {
-            let sub = &mut subs[(i / 2 / per) * 2 + i % 2];
-            sub[0] += strip[0];
-            sub[1] += strip[1];
-            sub[2] += strip[2];
+        // Strips to sub-cells in whole runs of rows, without a division per strip.
+        let per = (SAMPLES_Y / rows) as usize;
+        for (row, strips) in self.strips.chunks_exact(2 * per).enumerate() {
+            for pair in strips.chunks_exact(2) {
+                for (column, strip) in pair.iter().enumerate() {
+                    let sub = &mut subs[row * 2 + column];
+                    sub[0] += strip[0];
+                    sub[1] += strip[1];
+                    sub[2] += strip[2];
+                }
+            }
         }
         subs
     }
@@ -255,21 +290,19 @@ struct Cell {
     complement: Option<char>,
 }
 
+/// The best split so far: its gain, pattern, the two parts' colour sums and pixel counts.
+type Choice<'a> = (f64, &'a Pattern, [[u32; 3]; 2], [u32; 2]);
+
 /// The best cell for `sums` over the patterns of every layer: the one whose two parts' means
 /// leave the least squared error. `scratch` holds subset sums between calls.
 fn best_cell(sums: &FineSums, layers: &[Layer], scratch: &mut [[u32; 3]; 256]) -> Cell {
-    let mut best: Option<(f64, u32, u32, u32, &Pattern)> = None;
+    let mut best: Option<Choice> = None;
     for layer in layers {
         let count = 2 * layer.grid.1;
         let subs = sums.grid(layer.grid.1);
         subset_sums(&subs[..count as usize], scratch);
         let total = scratch[(1usize << count) - 1];
-        let per_sub = SAMPLES_X * SAMPLES_Y / count;
-        // 1/n for parts of 0..=count sub-cells.
-        let mut reciprocal = [0.0f64; 9];
-        for (k, r) in reciprocal.iter_mut().enumerate().skip(1) {
-            *r = 1.0 / f64::from(k as u32 * per_sub);
-        }
+        let reciprocal = layer.reciprocals();
         for pattern in &layer.patterns {
             let inside = scratch[pattern.mask as usize];
             let outside = [
@@ -281,25 +314,21 @@ fn best_cell(sums: &FineSums, layers: &[Layer], scratch: &mut [[u32; 3]; 256]) -
             let g = gain(inside, reciprocal[k as usize])
                 + gain(outside, reciprocal[(count - k) as usize]);
             if best.is_none_or(|b| g > b.0 + 1e-3) {
-                best = Some((g, count, per_sub, layer.grid.1, pattern));
+                let per_sub = layer.pixels_per_sub();
+                best = Some((
+                    g,
+                    pattern,
+                    [inside, outside],
+                    [k * per_sub, (count - k) * per_sub],
+                ));
             }
         }
     }
-    let (_, count, per_sub, rows, pattern) = best.expect("every set has patterns");
-    let subs = sums.grid(rows);
-    subset_sums(&subs[..count as usize], scratch);
-    let inside = scratch[pattern.mask as usize];
-    let total = scratch[(1usize << count) - 1];
-    let outside = [
-        total[0] - inside[0],
-        total[1] - inside[1],
-        total[2] - inside[2],
-    ];
-    let k = pattern.mask.count_ones();
+    let (_, pattern, [inside, outside], [n_in, n_out]) = best.expect("every set has patterns");
     Cell {
         glyph: pattern.glyph,
-        fg: mean(inside, k * per_sub),
-        bg: mean(outside, (count - k) * per_sub),
+        fg: mean(inside, n_in),
+        bg: mean(outside, n_out),
         complement: pattern.complement,
     }
 }
