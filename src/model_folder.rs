@@ -113,13 +113,14 @@ impl ModelFolder {
         }
         let file = open_no_follow(&path).map_err(unreadable)?;
         self.check_opened(&file, &path)?;
-        let size = file.metadata().map_err(unreadable)?.len();
-        if !file.metadata().map_err(unreadable)?.is_file() {
+        let opened = file.metadata().map_err(unreadable)?;
+        if !opened.is_file() {
             return Err(ReferenceError::Unreadable(format!(
                 "{}: not a regular file: refused",
                 path.display()
             )));
         }
+        let size = opened.len();
         if size > cap {
             return Err(unreadable(too_large(size, cap, what)));
         }

@@ -34,7 +34,7 @@ pub use obj_error::{ObjError, ObjProblem};
 pub use patch::FaceList;
 pub use ply::{PlyEncoding, PlyError, PlyModel, load_ply};
 pub use prism::prism;
-pub use srgb::srgb_to_linear;
+pub use srgb::{srgb_byte_to_linear, srgb_to_linear};
 pub use stl::{StlEncoding, StlError, StlModel, load_stl};
 pub use tessellate::{object_transform, tessellate, tessellate_part};
 pub use unique_positions::UniquePositions;

@@ -278,9 +278,7 @@ fn vertex_color(words: &mut std::str::SplitWhitespace<'_>) -> Option<Vec3> {
     if words.next().is_some() || !rgb.iter().all(|c| c.is_finite()) {
         return None;
     }
-    Some(Vec3::from_array(
-        rgb.map(|c| srgb_to_linear(c.clamp(0.0, 1.0))),
-    ))
+    Some(Vec3::from_array(rgb.map(srgb_to_linear)))
 }
 
 /// The next three words as numbers; `None` when they are fewer or not numbers.

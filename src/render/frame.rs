@@ -6,7 +6,7 @@ use std::ops::{AddAssign, Mul};
 use glam::Vec3;
 use rayon::prelude::*;
 
-use crate::mesh::srgb_to_linear;
+use crate::mesh::{srgb_byte_to_linear, srgb_to_linear};
 
 /// A `width`×`height` image of linear RGB, row-major from the top-left pixel, with coverage
 /// when the render was asked for it.
@@ -114,10 +114,11 @@ pub fn encode_srgb16(linear: f32) -> u16 {
     (srgb_curve(linear) * 65535.0 + 0.5) as u16
 }
 
-/// An 8-bit sRGB code value back to linear [0, 1].
+/// An 8-bit sRGB code value back to linear [0, 1] (the mesh loaders' table: one decode for
+/// file colours and frames alike).
 #[inline]
 pub fn decode_srgb(code: u8) -> f32 {
-    srgb_to_linear(code as f32 / 255.0)
+    srgb_byte_to_linear(code)
 }
 
 /// A 16-bit sRGB code value back to linear [0, 1].
