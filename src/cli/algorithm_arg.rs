@@ -9,6 +9,15 @@ use rastray::Algorithm;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct AlgorithmArg(pub Algorithm);
 
+impl AlgorithmArg {
+    /// The name `--algorithm` takes for it: `gouraud`, `phong` or `ray`.
+    pub fn spelling(self) -> String {
+        self.to_possible_value()
+            .map(|v| v.get_name().to_string())
+            .unwrap_or_default()
+    }
+}
+
 impl ValueEnum for AlgorithmArg {
     fn value_variants<'a>() -> &'a [AlgorithmArg] {
         const ALL: [AlgorithmArg; 3] = [

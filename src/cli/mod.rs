@@ -2,11 +2,16 @@
 //! names the file, line or field; `main` prints it and exits with code 2.
 
 mod algorithm_arg;
+mod batch_plan;
+mod batch_run;
 mod bench;
 mod format_arg;
+mod frames_arg;
 mod graphics_arg;
 mod info;
+mod join;
 mod render;
+mod shard_arg;
 mod stdout;
 mod up_arg;
 mod view;
@@ -69,8 +74,11 @@ impl From<ColorArg> for ColorMode {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Render a scene to an image (PNG, OpenEXR) or a turntable (GIF, animated PNG).
+    /// Render scenes or models to images (PNG, OpenEXR) or turntables (GIF, animated PNG), one
+    /// or many in one process.
     Render(render::RenderArgs),
+    /// Join still PNG frames (a turntable rendered in parts) into one GIF or animated PNG.
+    Join(join::JoinArgs),
     /// Render a scene once and print it to the terminal: real pixels where it can show them.
     View(view::ViewArgs),
     /// Print a scene's objects, triangle counts and bounds.
@@ -91,6 +99,7 @@ pub enum Command {
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
         Some(Command::Render(args)) => render::run(&args),
+        Some(Command::Join(args)) => join::run(&args),
         Some(Command::View(args)) => view::run(&args).map(|()| ExitCode::SUCCESS),
         Some(Command::Info { scene, up }) => info::run(&scene, up).map(|()| ExitCode::SUCCESS),
         Some(Command::Bench(args)) => bench::run_bench(&args).map(|()| ExitCode::SUCCESS),

@@ -5,7 +5,7 @@ use std::io::Write;
 
 use super::apng::{self, ApngHeader, apng_frame};
 use super::format::{AnimationFormat, PngDepth};
-use super::gif_animation::{self, gif_frame};
+use super::gif_animation::{self, gif_frame, gif_frame_of_samples, to_u16};
 use crate::render::Frame;
 
 /// A frame made ready to write.
@@ -38,13 +38,30 @@ impl Animation {
     /// `frame` made ready to write; runs on any thread.
     pub fn ready(&self, frame: &Frame) -> ReadyFrame {
         match self.format {
-            AnimationFormat::Gif => {
-                // GIF delays are in hundredths of a second.
-                let delay = (100.0 / self.fps as f32).round() as u16;
-                ReadyFrame::Gif(gif_frame(frame, delay))
-            }
+            AnimationFormat::Gif => ReadyFrame::Gif(gif_frame(frame, self.gif_delay())),
             AnimationFormat::Apng(depth) => ReadyFrame::Png(apng_frame(frame, depth)),
         }
+    }
+
+    /// A frame made ready from its samples as a still PNG of it stores them (8-bit, or 16-bit
+    /// big-endian; RGBA when the animation has alpha, else RGB): the same frame as
+    /// [`Animation::ready`] makes of the render itself. A GIF takes 8-bit samples only.
+    pub fn ready_samples(&self, samples: Vec<u8>) -> ReadyFrame {
+        match self.format {
+            AnimationFormat::Gif => ReadyFrame::Gif(gif_frame_of_samples(
+                &samples,
+                to_u16(self.width),
+                to_u16(self.height),
+                self.alpha,
+                self.gif_delay(),
+            )),
+            AnimationFormat::Apng(_) => ReadyFrame::Png(samples),
+        }
+    }
+
+    /// GIF delays are in hundredths of a second.
+    fn gif_delay(&self) -> u16 {
+        (100.0 / self.fps as f32).round() as u16
     }
 
     /// Starts writing the animation to `out`.

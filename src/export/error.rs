@@ -29,6 +29,9 @@ pub enum ExportError {
         input.display()
     )]
     OutputIsInput { path: PathBuf, input: PathBuf },
+    /// A frame given to a join that cannot be one of its frames.
+    #[error("{}: {message}", path.display())]
+    Join { path: PathBuf, message: String },
     #[error("{}: {error}", path.display())]
     Io {
         path: PathBuf,

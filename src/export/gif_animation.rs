@@ -13,8 +13,26 @@ const QUANTIZER_SPEED: i32 = 10;
 /// `frame` as a GIF frame shown for `delay` hundredths of a second, palette chosen and
 /// compressed: ready for [`write_frame`].
 pub fn gif_frame(frame: &Frame, delay: u16) -> gif::Frame<'static> {
-    let samples = samples8(frame);
-    let mut rgba: Vec<u8> = if frame.alpha.is_some() {
+    let (width, height) = gif_size(frame);
+    gif_frame_of_samples(
+        &samples8(frame),
+        width,
+        height,
+        frame.alpha.is_some(),
+        delay,
+    )
+}
+
+/// As [`gif_frame`], from a frame's 8-bit sRGB samples (RGBA when `alpha`, else RGB): those a
+/// still PNG of the frame stores, so a turntable joined from its frames' PNGs is the same GIF.
+pub fn gif_frame_of_samples(
+    samples: &[u8],
+    width: u16,
+    height: u16,
+    alpha: bool,
+    delay: u16,
+) -> gif::Frame<'static> {
+    let mut rgba: Vec<u8> = if alpha {
         samples
             .chunks_exact(4)
             .flat_map(|p| {
@@ -28,11 +46,10 @@ pub fn gif_frame(frame: &Frame, delay: u16) -> gif::Frame<'static> {
             .flat_map(|p| [p[0], p[1], p[2], 255])
             .collect()
     };
-    let (width, height) = gif_size(frame);
     let mut out = gif::Frame::from_rgba_speed(width, height, &mut rgba, QUANTIZER_SPEED);
     out.delay = delay;
     // A transparent frame must not show the one before through its holes.
-    out.dispose = if frame.alpha.is_some() {
+    out.dispose = if alpha {
         gif::DisposalMethod::Background
     } else {
         gif::DisposalMethod::Keep
@@ -66,7 +83,7 @@ fn gif_size(frame: &Frame) -> (u16, u16) {
     (to_u16(frame.width), to_u16(frame.height))
 }
 
-fn to_u16(n: u32) -> u16 {
+pub(super) fn to_u16(n: u32) -> u16 {
     const _: () = assert!(crate::render::MAX_DIMENSION <= u16::MAX as u32);
     n as u16
 }

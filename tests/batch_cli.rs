@@ -1,0 +1,317 @@
+//! `rastray render IN... -o TEMPLATE`: many inputs in one process, a failing file reported and
+//! skipped, shards that together write one run's files byte for byte, turntables rendered as
+//! frame ranges and joined into the file one `--turntable` run writes.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
+
+fn rastray(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rastray"))
+        .args(args)
+        .current_dir(dir)
+        .env("RASTRAY_CONFIG", "/nonexistent/rastray-test-config.toml")
+        .output()
+        .expect("runs")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// Runs `rastray ARGS` in `dir` and expects success.
+fn ok(args: &[&str], dir: &Path) -> Output {
+    let o = rastray(args, dir);
+    assert!(o.status.success(), "{args:?}: {}", text(&o.stderr));
+    o
+}
+
+/// Copies the small test models into `dir`: three that load, with distinct stems.
+fn three_models(dir: &Path) -> [&'static str; 3] {
+    for (from, to) in [
+        ("obj/cube.obj", "cube.obj"),
+        ("gltf/box.glb", "box.glb"),
+        ("stl/cube_binary.stl", "wedge.stl"),
+    ] {
+        std::fs::copy(Path::new(DATA).join(from), dir.join(to)).unwrap();
+    }
+    ["cube.obj", "box.glb", "wedge.stl"]
+}
+
+/// The files under `dir`, sorted, with their bytes.
+fn files(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+    let mut out: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .map(|p| {
+            (
+                PathBuf::from(p.file_name().unwrap()),
+                std::fs::read(&p).unwrap(),
+            )
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+#[test]
+fn three_models_and_a_broken_file_give_three_images_an_error_line_and_a_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = dir.path();
+    let models = three_models(at);
+    std::fs::write(at.join("broken.obj"), "v 1 2\n").unwrap();
+    let mut args = vec![
+        "render",
+        "-s",
+        "24x16",
+        "-o",
+        "out/{stem}.png",
+        "broken.obj",
+    ];
+    args.extend(models);
+    let o = rastray(&args, at);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o.stderr));
+    let written: Vec<PathBuf> = files(&at.join("out")).into_iter().map(|f| f.0).collect();
+    assert_eq!(
+        written,
+        ["box.png", "cube.png", "wedge.png"].map(PathBuf::from),
+        "the folder was made and the three images written"
+    );
+    for (name, bytes) in files(&at.join("out")) {
+        let image = image::load_from_memory(&bytes).expect("a PNG");
+        assert_eq!((image.width(), image.height()), (24, 16), "{name:?}");
+    }
+    let stderr = text(&o.stderr);
+    let errors: Vec<&str> = stderr.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(errors.len(), 1, "{stderr}");
+    assert!(errors[0].contains("broken.obj:1"), "{stderr}");
+    let summary = stderr.lines().last().unwrap();
+    assert!(
+        summary.contains("3 of 4 inputs") && summary.contains("failed: broken.obj"),
+        "{stderr}"
+    );
+    let stdout = text(&o.stdout);
+    assert_eq!(stdout.lines().filter(|l| l.contains("wrote")).count(), 3);
+}
+
+#[test]
+fn several_inputs_need_a_template_that_tells_them_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = dir.path();
+    let [a, b, _] = three_models(at);
+    for template in ["out.png", "{algo}.png", "-"] {
+        let o = rastray(&["render", "-s", "8x8", "-o", template, a, b], at);
+        assert_eq!(o.status.code(), Some(2), "{template}");
+        assert!(
+            text(&o.stderr).contains("{stem}, {name} or {index}"),
+            "{}",
+            text(&o.stderr)
+        );
+        assert!(o.stdout.is_empty(), "nothing rendered");
+    }
+    assert!(!at.join("out.png").exists() && !at.join("phong.png").exists());
+    // Two inputs with one stem in two folders: refused before anything renders.
+    std::fs::create_dir(at.join("again")).unwrap();
+    std::fs::copy(at.join(a), at.join("again").join(a)).unwrap();
+    let o = rastray(
+        &[
+            "render",
+            "-s",
+            "8x8",
+            "-o",
+            "{stem}.png",
+            a,
+            "again/cube.obj",
+        ],
+        at,
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        text(&o.stderr).contains("again/cube.obj"),
+        "{}",
+        text(&o.stderr)
+    );
+    assert!(!at.join("cube.png").exists());
+    // {index} counts the sorted inputs from 0; {algo} names the algorithm.
+    ok(
+        &[
+            "render",
+            "-s",
+            "8x8",
+            "-a",
+            "gouraud",
+            "-o",
+            "{index:02}-{algo}.png",
+            b,
+            a,
+        ],
+        at,
+    );
+    assert!(at.join("00-gouraud.png").exists() && at.join("01-gouraud.png").exists());
+}
+
+#[test]
+fn a_template_never_writes_over_an_input_and_its_fields_need_their_flags() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = dir.path();
+    let [a, b, _] = three_models(at);
+    let before = std::fs::read(at.join(a)).unwrap();
+    let o = rastray(&["render", "-s", "8x8", "-o", "{name}", a, b], at);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        text(&o.stderr).contains("refusing to write over it"),
+        "{}",
+        text(&o.stderr)
+    );
+    assert_eq!(std::fs::read(at.join(a)).unwrap(), before);
+    for (args, says) in [
+        (&["-o", "{frame}.png"][..], "needs --turntable"),
+        (
+            &["--turntable", "4", "--frames", "0..1", "-o", "a.gif"],
+            "put {frame}",
+        ),
+        (
+            &["--turntable", "4", "--frames", "2..4", "-o", "{frame}.png"],
+            "frames 0 to 3",
+        ),
+        (&["-o", "{stem.png"], "not closed"),
+        (&["-o", "{view}.png"], "needs --view"),
+        (&["--shard", "3/2"], "I/N"),
+    ] {
+        let mut all = vec!["render", "-s", "8x8", a];
+        all.extend(args);
+        let o = rastray(&all, at);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        assert!(
+            text(&o.stderr).contains(says),
+            "{args:?}: {}",
+            text(&o.stderr)
+        );
+    }
+}
+
+#[test]
+fn two_shards_write_exactly_the_files_of_one_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = dir.path();
+    let models = three_models(at);
+    let render = |out: &str, shard: Option<&str>| {
+        let template = format!("{out}/{{stem}}.png");
+        let mut args = vec!["render", "-s", "20x12", "-o", &template];
+        if let Some(shard) = shard {
+            args.extend(["--shard", shard]);
+        }
+        // Listed in another order each time: the shards follow the sorted order.
+        let mut listed = models.to_vec();
+        if shard == Some("2/2") {
+            listed.reverse();
+        }
+        args.extend(listed);
+        ok(&args, at)
+    };
+    render("whole", None);
+    let first = render("parts", Some("1/2"));
+    let one = files(&at.join("parts")).len();
+    assert!(
+        (1..3).contains(&one),
+        "shard 1/2 wrote {one}: {}",
+        text(&first.stdout)
+    );
+    render("parts", Some("2/2"));
+    assert_eq!(files(&at.join("parts")), files(&at.join("whole")));
+}
+
+#[test]
+fn a_turntable_in_two_frame_ranges_joins_into_the_file_of_one_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = dir.path();
+    let [_, model, _] = three_models(at);
+    for (extra, animation) in [(&[][..], "spin.gif"), (&["--transparent"][..], "spin.png")] {
+        let common = |more: &[&str]| {
+            let mut args = vec!["render", model, "-s", "24x16", "--turntable", "6"];
+            args.extend(extra);
+            args.extend(more);
+            ok(&args, at)
+        };
+        common(&["-o", animation]);
+        let folder = format!("frames-{animation}");
+        let template = format!("{folder}/{{frame:04}}.png");
+        common(&["--frames", "0..3", "-o", &template]);
+        common(&["--frames", "4..5", "-o", &template]);
+        let frames: Vec<String> = files(&at.join(&folder))
+            .into_iter()
+            .map(|(name, _)| format!("{folder}/{}", name.display()))
+            .collect();
+        assert_eq!(frames.len(), 6);
+        assert_eq!(frames[0], format!("{folder}/0000.png"));
+        let joined = format!("joined-{animation}");
+        let mut args = vec!["join", "-o", &joined];
+        args.extend(frames.iter().map(String::as_str));
+        ok(&args, at);
+        assert!(
+            std::fs::read(at.join(&joined)).unwrap() == std::fs::read(at.join(animation)).unwrap(),
+            "{joined} differs from {animation}"
+        );
+    }
+}
+
+#[test]
+fn join_refuses_frames_that_do_not_match() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = dir.path();
+    let [model, _, _] = three_models(at);
+    ok(&["render", model, "-s", "8x8", "-o", "a.png"], at);
+    ok(&["render", model, "-s", "9x8", "-o", "b.png"], at);
+    ok(
+        &[
+            "render", model, "-s", "8x8", "--format", "png16", "-o", "deep.png",
+        ],
+        at,
+    );
+    std::fs::write(at.join("text.png"), "not a png").unwrap();
+    for (frames, says) in [
+        (&["a.png", "b.png"][..], "b.png: this frame is 9x8"),
+        (&["a.png", "text.png"], "text.png: not a PNG"),
+        (&["deep.png"], "8-bit frames"),
+    ] {
+        let mut args = vec!["join", "-o", "spin.gif"];
+        args.extend(frames);
+        let o = rastray(&args, at);
+        assert_eq!(o.status.code(), Some(2), "{frames:?}");
+        assert!(
+            text(&o.stderr).contains(says),
+            "{frames:?}: {}",
+            text(&o.stderr)
+        );
+        assert!(!at.join("spin.gif").exists(), "nothing left behind");
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn templated_outputs_stream_to_fifos() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = dir.path();
+    let [a, b, _] = three_models(at);
+    let readers: Vec<_> = ["box", "cube"]
+        .into_iter()
+        .map(|stem| {
+            let fifo = at.join(format!("{stem}.png"));
+            rustix::fs::mknodat(
+                rustix::fs::CWD,
+                &fifo,
+                rustix::fs::FileType::Fifo,
+                rustix::fs::Mode::from_raw_mode(0o600),
+                0,
+            )
+            .unwrap();
+            std::thread::spawn(move || std::fs::read(fifo).unwrap())
+        })
+        .collect();
+    ok(&["render", "-s", "8x8", "-o", "{stem}.png", a, b], at);
+    for reader in readers {
+        let bytes = reader.join().unwrap();
+        assert!(bytes.starts_with(b"\x89PNG"), "a PNG came down the FIFO");
+    }
+}
