@@ -3,6 +3,7 @@
 
 mod algorithm_arg;
 mod bench;
+mod display_args;
 mod format_arg;
 mod graphics_arg;
 mod info;

@@ -69,6 +69,8 @@ pub struct RenderArgs {
     #[arg(long, requires = "turntable", default_value_t = rastray::export::DEFAULT_FPS,
           value_parser = clap::value_parser!(u32).range(1..=MAX_FPS as i64))]
     pub fps: u32,
+    #[command(flatten)]
+    pub display: super::display_args::DisplayArgs,
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
@@ -86,19 +88,20 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     destination.refuse_inputs(args.scene.as_slice())?;
     let output = Output::for_destination(&destination, args.format.map(|f| f.0), turntable)?;
     let (scene, base) = super::load_scene(args.scene.as_deref(), args.up)?;
-    let options = RenderOptions {
+    let options = args.display.apply(RenderOptions {
         samples: args.samples,
         shadows: !args.no_shadows,
         max_depth: args.max_depth,
         alpha: args.transparent,
         ..RenderOptions::new(args.algorithm.0, args.size.width, args.size.height)
-    };
+    });
     options.check()?;
     let report = super::build_world(&scene, &base)?;
     let inputs: Vec<PathBuf> = args.scene.iter().cloned().chain(report.inputs).collect();
     destination.refuse_inputs(&inputs)?;
     let world = Arc::new(report.world);
     super::print_warnings(&scene, &world);
+    args.display.print_notes(&world);
     if let (Output::Turntable(turntable, format), Destination::File(path)) = (output, &destination)
     {
         warn_unless_room(turntable, format, &options, path);
