@@ -44,12 +44,14 @@ pub fn ground_grid(world: &World) -> Option<Grid> {
 
 /// The smallest of 1, 2 and 5 times a power of ten that is at least `step` (> 0).
 fn round_step(step: f32) -> f32 {
-    let power = 10f32.powf(step.log10().floor());
+    // In f64 and by an integer power, so that 0.2 is the f32 nearest 0.2 and prints so.
+    let exponent = (step as f64).log10().floor() as i32;
+    let power = 10f64.powi(exponent);
     [1.0, 2.0, 5.0, 10.0]
         .into_iter()
         .map(|m| m * power)
-        .find(|&s| s >= step * (1.0 - 1e-6))
-        .unwrap_or(10.0 * power)
+        .find(|&s| s >= step as f64 * (1.0 - 1e-6))
+        .unwrap_or(10.0 * power) as f32
 }
 
 impl Grid {
