@@ -35,6 +35,9 @@ pub struct WorldObject {
     /// The mesh's distinct positions, which the Z-buffer projects once each per frame; built with
     /// the object and kept matching `mesh`.
     pub unique: UniquePositions,
+    /// The model file's texture coordinates at each corner of each triangle (index-aligned with
+    /// `mesh.triangles`), when the file gives them; read by the `uv` display mode.
+    pub corner_uvs: Option<Vec<[glam::Vec2; 3]>>,
 }
 
 impl WorldObject {
@@ -47,7 +50,19 @@ impl WorldObject {
             unique: UniquePositions::of(&mesh),
             mesh,
             material,
+            corner_uvs: None,
         }
+    }
+
+    /// This object with the texture coordinates of `geometry`, the file it was tessellated
+    /// from, when the file has them for each of the mesh's triangles.
+    fn with_uvs_of(mut self, geometry: &crate::mesh::ModelGeometry) -> WorldObject {
+        self.corner_uvs = geometry
+            .corner_uvs
+            .as_ref()
+            .filter(|uvs| uvs.len() == self.mesh.triangles.len())
+            .cloned();
+        self
     }
 }
 
@@ -210,7 +225,8 @@ impl World {
                         .map(|part| {
                             let mesh = tessellate_part(object, &part.geometry, centre);
                             (
-                                WorldObject::new(mesh, part_material(object, part.material)),
+                                WorldObject::new(mesh, part_material(object, part.material))
+                                    .with_uvs_of(&part.geometry),
                                 WorldObjectSource {
                                     object: index,
                                     part: Some(part.label.clone()),
@@ -224,7 +240,8 @@ impl World {
                     | MeshFile::Stl(StlModel { geometry, .. })
                     | MeshFile::Ply(PlyModel { geometry, .. }),
                 ) => vec![(
-                    WorldObject::new(tessellate(object, Some(geometry)), object.material),
+                    WorldObject::new(tessellate(object, Some(geometry)), object.material)
+                        .with_uvs_of(geometry),
                     WorldObjectSource {
                         object: index,
                         part: None,

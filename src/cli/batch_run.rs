@@ -35,6 +35,8 @@ pub struct Settings {
     pub turntable: Option<Turntable>,
     /// Create an output's missing folders (the output is a template with fields).
     pub make_folders: bool,
+    /// The display mode and overlays, whose notes are printed for each input.
+    pub display: super::display_args::DisplayArgs,
 }
 
 /// Where the worker is, for the progress bar.
@@ -193,7 +195,7 @@ fn work(
                 outcome.error = Some(error);
             }
         };
-        let loaded = match bar.suspend(|| load(plan, input, settings.up, &listed)) {
+        let loaded = match bar.suspend(|| load(plan, input, settings, &listed)) {
             Ok(loaded) => loaded,
             Err(error) => {
                 status.done.fetch_add(jobs.len(), Ordering::Relaxed);
@@ -237,15 +239,16 @@ fn work(
 fn load(
     plan: &Plan,
     input: usize,
-    up: Option<UpAxis>,
+    settings: &Settings,
     listed: &[PathBuf],
 ) -> anyhow::Result<Loaded> {
     let path = plan.inputs[input].as_deref();
-    let (scene, base) = super::load_scene(path, up)?;
+    let (scene, base) = super::load_scene(path, settings.up)?;
     let report = super::build_world(&scene, &base)?;
     let files: Vec<PathBuf> = listed.iter().cloned().chain(report.inputs).collect();
     let world = Arc::new(report.world);
     super::print_warnings(&scene, &world);
+    settings.display.print_notes(&world);
     Ok(Loaded {
         scene,
         world,

@@ -5,6 +5,7 @@ mod algorithm_arg;
 mod batch_plan;
 mod batch_run;
 mod bench;
+mod display_args;
 mod format_arg;
 mod frames_arg;
 mod graphics_arg;

@@ -85,6 +85,8 @@ pub struct RenderArgs {
     /// then frames): N machines or jobs each given one slice write every file once.
     #[arg(long, value_name = "I/N", value_parser = super::shard_arg::parse_shard)]
     pub shard: Option<Shard>,
+    #[command(flatten)]
+    pub display: super::display_args::DisplayArgs,
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
@@ -94,14 +96,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     });
     let algorithm = args.algorithm.map_or(Algorithm::Phong, |a| a.0);
     let size = args.size.unwrap_or(DEFAULT_SIZE);
-    let options = RenderOptions {
+    let options = args.display.apply(RenderOptions {
         samples: args.samples.unwrap_or(1),
         shadows: !args.no_shadows,
         max_depth: args.max_depth,
         alpha: args.transparent,
         threads: args.threads,
         ..RenderOptions::new(algorithm, size.width, size.height)
-    };
+    });
     let plan = batch_plan::plan(&batch_plan::Request {
         inputs: &args.inputs,
         template: &args.output,
@@ -118,6 +120,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         up: args.up,
         turntable,
         make_folders: OutputTemplate::parse(&args.output)?.has_fields(),
+        display: args.display.clone(),
     };
     batch_run::run(&plan, &settings)
 }

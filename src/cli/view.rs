@@ -40,6 +40,8 @@ pub struct ViewArgs {
     /// How to draw: guessed from the environment, or one protocol.
     #[arg(long, value_enum, default_value_t = GraphicsArg::Auto)]
     pub graphics: GraphicsArg,
+    #[command(flatten)]
+    pub display: super::display_args::DisplayArgs,
 }
 
 pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
@@ -58,9 +60,12 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     let cell = CellSize::default();
     let area = CellArea::for_aspect(cols, ASPECT, cell);
     let (width, height) = protocol.picture_size(area, cell);
-    let options = RenderOptions::new(args.algorithm.0, width, height);
+    let options = args
+        .display
+        .apply(RenderOptions::new(args.algorithm.0, width, height));
     options.check()?;
     let world = Arc::new(World::build(&scene, &base)?);
+    args.display.print_notes(&world);
     let mut frame = Frame::default();
     Renderer::new(options).render(&world, &scene.camera, &Progress::new(), &mut frame)?;
     let bytes = protocol

@@ -5,6 +5,8 @@ use std::num::NonZeroUsize;
 use std::str::FromStr;
 
 use super::algorithm::Algorithm;
+use super::display_mode::DisplayMode;
+use super::overlay::Overlays;
 
 /// Largest width or height accepted, pixels.
 pub const MAX_DIMENSION: u32 = 16_384;
@@ -96,11 +98,15 @@ pub struct RenderOptions {
     /// Render threads; `None` uses one per core (rayon's global pool). The image is the same
     /// for any count.
     pub threads: Option<NonZeroUsize>,
+    /// How surfaces are shown; [`DisplayMode::Shaded`] is the algorithm's lit image.
+    pub mode: DisplayMode,
+    /// Lines drawn over the image; none by default.
+    pub overlays: Overlays,
 }
 
 impl RenderOptions {
     /// Options for `algorithm` at `width`×`height`, one sample, shadows on, the scene's depth,
-    /// no alpha, one thread per core.
+    /// no alpha, one thread per core, shaded, no overlays.
     pub fn new(algorithm: Algorithm, width: u32, height: u32) -> RenderOptions {
         RenderOptions {
             algorithm,
@@ -111,6 +117,8 @@ impl RenderOptions {
             max_depth: None,
             alpha: false,
             threads: None,
+            mode: DisplayMode::Shaded,
+            overlays: Overlays::default(),
         }
     }
 

@@ -10,15 +10,19 @@ use rayon::prelude::*;
 
 use super::algorithm::Algorithm;
 use super::camera::View;
+use super::display_mode::DisplayMode;
 use super::error::RenderError;
 use super::frame::{Frame, box_filter};
+use super::mode_shading::ModeShading;
 use super::options::RenderOptions;
+use super::overlay::{Canvas, draw_overlays};
 use super::prepared::Prepared;
 use super::progress::{Cancelled, Progress};
-use super::raster::{RasterScratch, raster_coverage, render_gouraud, render_phong};
-use super::ray::{primary_coverage, trace_into};
+use super::raster::{RasterScratch, raster_coverage, raster_hits, render_gouraud, render_phong};
+use super::ray::{primary_coverage, primary_hits, trace_into};
 use super::scratch::Scratch;
 use super::stats::{RayCounts, RenderStats};
+use super::surface_hit::SurfaceHit;
 use crate::scene::Camera;
 use crate::world::World;
 
@@ -184,7 +188,11 @@ fn render_frame(
     let started = Instant::now();
     let n = options.samples;
     let full = View::new(camera, options.width * n, options.height * n);
-    let passes = if options.alpha { 2 } else { 1 };
+    // A display mode other than `shaded`, or an overlay, needs the surface at each sample: a
+    // pass of its own. Only `shaded` and `wire` draw the lit image.
+    let decorated = options.mode != DisplayMode::Shaded || options.overlays.any();
+    let lit = matches!(options.mode, DisplayMode::Shaded | DisplayMode::Wire);
+    let passes = options.alpha as u64 + lit as u64 + decorated as u64;
     progress.start(full.height as u64 * passes);
     let strip_rows = (STRIP_SAMPLES / (full.width as u64 * (n * n) as u64))
         .clamp(1, options.height as u64) as u32;
@@ -228,6 +236,82 @@ fn render_frame(
             leave_out_background(out, covered);
             Ok(cast)
         };
+    // The surface at each sample of `view`, as the algorithm finds it, into `hits`; the
+    // Z-buffer draws into `work` on the way.
+    let find_hits = |raster: &mut RasterScratch,
+                     view: &View,
+                     work: &mut Vec<Vec3>,
+                     hits: &mut Vec<SurfaceHit>| {
+        let len = view.width as usize * view.height as usize;
+        hits.resize(len, SurfaceHit::MISS);
+        match options.algorithm {
+            Algorithm::Gouraud | Algorithm::Phong => {
+                work.resize(len, Vec3::ZERO);
+                raster_hits(raster, world, view, progress, work, hits)
+            }
+            Algorithm::Ray => {
+                let accel = prepared.accel().expect("prepared for the ray tracer");
+                primary_hits(accel, view, progress, hits)
+            }
+        }
+    };
+    // Draws `view` into `out` in the options' display mode, with their overlays: the lit image
+    // (for `shaded` and `wire`) or the coverage alone, then the surface hits, then the mode's
+    // colours and the overlays from them.
+    let draw_decorated = |scratch: &mut DecorationScratch,
+                          view: &View,
+                          out: &mut [Vec3],
+                          mut covered: Option<&mut [f32]>| {
+        let DecorationScratch {
+            raster,
+            hits,
+            work,
+            depth,
+        } = scratch;
+        let cast = if lit {
+            draw_covered(raster, view, out, covered.as_deref_mut())?
+        } else {
+            if let Some(covered) = covered.as_deref_mut() {
+                cover(raster, view, out, covered)?;
+            }
+            no_rays()
+        };
+        find_hits(raster, view, work, hits)?;
+        if options.mode != DisplayMode::Shaded {
+            ModeShading::new(world, view, options.mode, n).apply(hits, out);
+        }
+        if options.overlays.any() {
+            depth.clear();
+            depth.par_extend(hits.par_iter().map(|hit| {
+                if hit.is_hit() {
+                    hit.depth(world, view)
+                } else {
+                    f32::INFINITY
+                }
+            }));
+            let mut canvas = Canvas {
+                view,
+                samples: n,
+                out,
+                depth,
+            };
+            draw_overlays(&options.overlays, world, hits, &mut canvas);
+        }
+        if let (false, Some(covered)) = (lit, covered) {
+            leave_out_background(out, covered);
+        }
+        Ok(cast)
+    };
+    let draw_strip = |scratch: &mut DecorationScratch,
+                      view: &View,
+                      out: &mut [Vec3],
+                      covered: Option<&mut [f32]>| {
+        if decorated {
+            draw_decorated(scratch, view, out, covered)
+        } else {
+            draw_covered(scratch.raster, view, out, covered)
+        }
+    };
     let width = options.width as usize;
     let mut rays = RayCounts::default();
     // Supersampled strips are drawn into one scratch strip and box-filtered into the frame;
@@ -242,9 +326,18 @@ fn render_frame(
             samples,
             coverage,
             raster,
+            hits,
+            work,
+            depth,
         } = &mut *scratch;
+        let decoration = &mut DecorationScratch {
+            raster,
+            hits,
+            work,
+            depth,
+        };
         let cast = if n == 1 {
-            draw_covered(raster, &view, out, alpha)?
+            draw_strip(decoration, &view, out, alpha)?
         } else {
             let len = view.width as usize * view.height as usize;
             samples.resize(len, Vec3::ZERO);
@@ -252,7 +345,7 @@ fn render_frame(
                 coverage.resize(len, 0.0);
                 &mut coverage[..]
             });
-            let cast = draw_covered(raster, &view, samples, covered)?;
+            let cast = draw_strip(decoration, &view, samples, covered)?;
             let filtering = Instant::now();
             box_filter(samples, view.width, n, out);
             if let Some(alpha) = alpha {
@@ -268,6 +361,14 @@ fn render_frame(
         .elapsed()
         .saturating_sub(stats.prepare + stats.filter);
     Ok(stats)
+}
+
+/// The working memory of one strip's display mode and overlays, borrowed from [`Scratch`].
+struct DecorationScratch<'a> {
+    raster: &'a mut RasterScratch,
+    hits: &'a mut Vec<SurfaceHit>,
+    work: &'a mut Vec<Vec3>,
+    depth: &'a mut Vec<f32>,
 }
 
 /// Zeroes the colour of every sample no surface covers (`covered` 0; 1 keeps it): the colours

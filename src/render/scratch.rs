@@ -4,6 +4,7 @@
 use glam::Vec3;
 
 use super::raster::RasterScratch;
+use super::surface_hit::SurfaceHit;
 
 /// Buffers reused by every render of one [`crate::render::Renderer`].
 #[derive(Debug, Default)]
@@ -14,4 +15,11 @@ pub(super) struct Scratch {
     pub(super) coverage: Vec<f32>,
     /// The Z-buffer's projected vertices, screen triangles and bins.
     pub(super) raster: RasterScratch,
+    /// The surface at each sample of the strip, for the display modes and overlays.
+    pub(super) hits: Vec<SurfaceHit>,
+    /// Working samples of the strip: the Z-buffer's hit pass draws into them, and the overlays
+    /// keep the depth of each sample's surface in `depth`.
+    pub(super) work: Vec<Vec3>,
+    /// Depth along the view of each sample's surface (+∞ on the background), for overlays.
+    pub(super) depth: Vec<f32>,
 }

@@ -7,6 +7,7 @@ mod coverage;
 mod fragments;
 mod gouraud;
 mod gouraud_parts;
+mod hits;
 mod phong;
 mod projected;
 #[cfg(target_arch = "x86_64")]
@@ -21,6 +22,7 @@ mod zbuffer;
 
 pub(crate) use coverage::raster_coverage;
 pub(crate) use gouraud::render_gouraud;
+pub(crate) use hits::raster_hits;
 pub(crate) use phong::render_phong;
 #[cfg(test)]
 use phong::render_phong_unpaired;

@@ -21,7 +21,7 @@ mod tracer;
 mod triangle_lanes;
 
 pub(crate) use accel::SceneAccel;
-pub(crate) use primary::primary_coverage;
+pub(crate) use primary::{primary_coverage, primary_hits};
 pub(crate) use tracer::trace_into;
 
 #[cfg(test)]

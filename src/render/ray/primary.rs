@@ -1,5 +1,6 @@
 //! Primary rays: the packet through eight pixel centres, which the tracer shades, and coverage
-//! for alpha, which asks only whether each of those rays hits anything.
+//! for alpha, which asks only whether each of those rays hits anything, and the surface each
+//! meets, for the display modes.
 
 use rayon::prelude::*;
 
@@ -8,6 +9,7 @@ use super::packet::RayPacket;
 use crate::render::camera::{NEAR, View};
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::simd::{F32x8, V3, WIDTH};
+use crate::render::surface_hit::SurfaceHit;
 
 /// The primary rays of `view` through continuous pixel coordinates (`x`, `y`) of each lane:
 /// from the eye, unit directions, starting where the rasterizer's near plane cuts each ray, so
@@ -44,6 +46,45 @@ pub fn primary_coverage(
                 let hits = accel.intersect_packet(&packet).hit().move_mask();
                 for (k, c) in out.iter_mut().enumerate() {
                     *c = (hits >> k & 1) as f32;
+                }
+            }
+            progress.advance(1);
+            Ok(())
+        })
+}
+
+/// Writes into `hits` the surface the primary ray through each pixel centre of `view` meets
+/// (`view.width`×`view.height` values): the hit the tracer shades there, lane by lane the same.
+pub fn primary_hits(
+    accel: &SceneAccel,
+    view: &View,
+    progress: &Progress,
+    hits: &mut [SurfaceHit],
+) -> Result<(), Cancelled> {
+    let width = view.width as usize;
+    debug_assert_eq!(hits.len(), width * view.height as usize);
+    hits.par_chunks_mut(width)
+        .enumerate()
+        .try_for_each(|(y, row)| {
+            progress.check()?;
+            let y = F32x8::splat(y as f32 + 0.5);
+            for (left, out) in (0..width).step_by(WIDTH).zip(row.chunks_mut(WIDTH)) {
+                let x = std::array::from_fn(|k| (left + k).min(width - 1) as f32 + 0.5);
+                let found = accel.intersect_packet(&primary_packet(view, F32x8::from(x), y));
+                let mask = found.hit().move_mask();
+                let (u, v) = (found.u.to_array(), found.v.to_array());
+                let (object, triangle) = (found.object.to_array(), found.triangle.to_array());
+                for (k, hit) in out.iter_mut().enumerate() {
+                    *hit = if mask >> k & 1 == 1 {
+                        SurfaceHit {
+                            object: object[k],
+                            triangle: triangle[k],
+                            u: u[k],
+                            v: v[k],
+                        }
+                    } else {
+                        SurfaceHit::MISS
+                    };
                 }
             }
             progress.advance(1);

@@ -1,0 +1,58 @@
+//! Overlays drawn over a render: a ground grid, an axis gizmo, a bounding box and an outline
+//! around the selected object. Lines are projected with the render's own `View` and drawn into
+//! the samples before they are filtered; the grid is depth-tested against the surfaces the
+//! render found, so the model hides it.
+
+mod bounds_box;
+mod canvas;
+mod gizmo;
+mod grid;
+mod outline;
+mod set;
+
+pub use bounds_box::overlay_bounds;
+pub use grid::{Grid, ground_grid};
+pub use set::{Overlays, UnknownOverlay};
+
+pub(super) use canvas::Canvas;
+
+use super::surface_hit::SurfaceHit;
+use crate::world::World;
+
+/// Line colours, linear RGB.
+mod colors {
+    use glam::Vec3;
+    pub const GRID: Vec3 = Vec3::new(0.32, 0.32, 0.36);
+    pub const BOUNDS: Vec3 = Vec3::new(1.0, 0.75, 0.05);
+    pub const OUTLINE: Vec3 = Vec3::new(1.0, 0.35, 0.0);
+    pub const AXES: [Vec3; 3] = [
+        Vec3::new(0.9, 0.08, 0.05),
+        Vec3::new(0.1, 0.75, 0.1),
+        Vec3::new(0.1, 0.3, 1.0),
+    ];
+}
+
+/// Draws `overlays` over `canvas` (one strip's samples), whose surfaces are `hits`.
+pub(super) fn draw_overlays(
+    overlays: &Overlays,
+    world: &World,
+    hits: &[SurfaceHit],
+    canvas: &mut Canvas,
+) {
+    if overlays.grid
+        && let Some(grid) = ground_grid(world)
+    {
+        grid.draw(canvas);
+    }
+    if overlays.outline {
+        outline::draw(overlays.selected, hits, canvas);
+    }
+    if overlays.bbox
+        && let Some(bounds) = overlay_bounds(world, overlays.selected)
+    {
+        bounds_box::draw(bounds, canvas);
+    }
+    if overlays.axes {
+        gizmo::draw(canvas);
+    }
+}
