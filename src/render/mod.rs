@@ -27,6 +27,7 @@ mod stats;
 
 pub use algorithm::Algorithm;
 pub use camera::{NEAR, View};
+pub use cpu::cpu_features;
 pub use error::RenderError;
 pub use frame::{Frame, decode_srgb, decode_srgb16, encode_srgb, encode_srgb16};
 pub use options::{MAX_DIMENSION, MAX_SAMPLES, MAX_SAMPLES_TOTAL, RenderOptions, Size, SizeError};
