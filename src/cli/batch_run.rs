@@ -6,7 +6,7 @@
 //! written is removed, and the exit status says which signal it was.
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
@@ -21,6 +21,7 @@ use rastray::text_escape::Escaped;
 use signal_hook::consts::{SIGINT, SIGTERM};
 
 use super::batch_plan::{Job, JobKind, Plan};
+use super::stdin_model::{InputFormat, StdinModel};
 use super::stdout::outln;
 
 /// A long render shows a progress bar after this long.
@@ -31,7 +32,12 @@ const PROGRESS_DELAY: Duration = Duration::from_millis(400);
 pub struct Settings {
     pub options: RenderOptions,
     pub size: Size,
+    /// `--up`, for every input (a scene refuses it).
     pub up: Option<UpAxis>,
+    /// The config file's `up`, for model files only.
+    pub default_up: Option<UpAxis>,
+    /// `--input-format`, for a model read from standard input.
+    pub input_format: Option<InputFormat>,
     pub turntable: Option<Turntable>,
     /// Create an output's missing folders (the output is a template with fields).
     pub make_folders: bool,
@@ -235,7 +241,8 @@ fn work(
     outcome
 }
 
-/// Loads input `input` of `plan` and builds its world; warnings go to stderr.
+/// Loads input `input` of `plan` and builds its world; warnings go to stderr. `-` is a model
+/// read from standard input.
 fn load(
     plan: &Plan,
     input: usize,
@@ -243,7 +250,28 @@ fn load(
     listed: &[PathBuf],
 ) -> anyhow::Result<Loaded> {
     let path = plan.inputs[input].as_deref();
-    let (scene, base) = super::load_scene(path, settings.up)?;
+    if path == Some(Path::new("-")) {
+        let Some(format) = settings.input_format else {
+            anyhow::bail!(
+                "-: a model read from standard input needs --input-format (glb, gltf, obj, stl or ply)"
+            );
+        };
+        let model = StdinModel::read(format)?;
+        return load_file(Some(model.path()), settings, listed)
+            .map_err(|e| anyhow::anyhow!("{}", model.rename_in(&format!("{e:#}"))));
+    }
+    load_file(path, settings, listed)
+}
+
+/// Loads the scene or model at `path` (the default scene for `None`) and builds its world.
+fn load_file(
+    path: Option<&Path>,
+    settings: &Settings,
+    listed: &[PathBuf],
+) -> anyhow::Result<Loaded> {
+    let is_model = path.is_some_and(rastray::model_scene::is_model_file);
+    let up = settings.up.or(settings.default_up.filter(|_| is_model));
+    let (scene, base) = super::load_scene(path, up)?;
     let report = super::build_world(&scene, &base)?;
     let files: Vec<PathBuf> = listed.iter().cloned().chain(report.inputs).collect();
     let world = Arc::new(report.world);

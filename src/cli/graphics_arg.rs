@@ -6,10 +6,11 @@ use rastray::tui::ColorMode;
 use rastray::tui::graphics::GraphicsRequest;
 
 /// How to draw pictures: asked of the terminal, or one protocol.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, ValueEnum)]
 pub enum GraphicsArg {
     /// The best the terminal has: kitty, iTerm2 or sixel, else half blocks (`view`: plain text
     /// when stdout is not a terminal).
+    #[default]
     Auto,
     Kitty,
     Sixel,

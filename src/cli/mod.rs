@@ -5,14 +5,17 @@ mod algorithm_arg;
 mod batch_plan;
 mod batch_run;
 mod bench;
+mod config;
 mod display_args;
 mod format_arg;
 mod frames_arg;
 mod graphics_arg;
 mod info;
 mod join;
+mod mistyped;
 mod render;
 mod shard_arg;
+mod stdin_model;
 mod stdout;
 mod up_arg;
 mod view;
@@ -21,7 +24,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Context;
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 use rastray::mesh::EXPECTED_MODEL;
 use rastray::render::Size;
 use rastray::scene::{SceneError, UpAxis};
@@ -49,9 +52,13 @@ pub struct Cli {
     #[arg(long, value_enum)]
     pub color: Option<ColorArg>,
     /// How the editor's preview is drawn (default: asked of the terminal: kitty, iTerm2 or
-    /// sixel graphics where it answers for them, else half blocks). The status line names it.
-    #[arg(long, value_enum, default_value_t = graphics_arg::GraphicsArg::Auto)]
-    pub graphics: graphics_arg::GraphicsArg,
+    /// sixel graphics where it answers for them, else half blocks; or the config file's). The
+    /// status line names it.
+    #[arg(long, value_enum)]
+    pub graphics: Option<graphics_arg::GraphicsArg>,
+    /// Read no config file: only the command line and the built-in defaults count.
+    #[arg(long, global = true)]
+    pub no_config: bool,
 }
 
 /// The `--color` values, spelled as users type them.
@@ -93,27 +100,126 @@ pub enum Command {
     },
     /// Repeat the study's two experiments for the three algorithms and write a report.
     Bench(bench::BenchArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell) on stdout.
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// Print rastray's manual page (roff) on stdout: `rastray man | man -l -`.
+    Man,
+    /// Print the config file in use and the defaults taken from it.
+    Config,
+}
+
+/// The command line's definition, its version naming the CPU features the renderer uses.
+pub fn command() -> clap::Command {
+    let features = rastray::render::cpu_features();
+    let features = if features.is_empty() {
+        "none beyond baseline x86-64 (SSE2)".to_string()
+    } else {
+        features.join(", ")
+    };
+    let version = format!(
+        "{} (CPU features in use: {features})",
+        env!("CARGO_PKG_VERSION")
+    );
+    // Made once per process: the definition keeps it for the process's life.
+    Cli::command().version(version.leak() as &str)
+}
+
+/// Parses the process's arguments; a mistyped command (`rastray veiw`) is refused with the
+/// command it is close to, exit code 2.
+pub fn parse() -> Cli {
+    let mut args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    let definition = Cli::command();
+    let names: Vec<&str> = definition.get_subcommands().map(|c| c.get_name()).collect();
+    // `rastray --no-config render …`: clap takes an argument before a command as the editor's,
+    // which conflicts with the command; the flag is the command's as well.
+    if args.len() > 2
+        && args[1] == "--no-config"
+        && args[2].to_str().is_some_and(|c| names.contains(&c))
+    {
+        args.swap(1, 2);
+    }
+    if let Some(word) = args.get(1).and_then(|a| a.to_str())
+        && let Some(near) = mistyped::suggestion(word, &names)
+    {
+        eprintln!(
+            "error: `{}` is no command and no file; did you mean '{near}'? (a new scene needs a .toml name; see `rastray --help`)",
+            Escaped(word)
+        );
+        std::process::exit(2);
+    }
+    let matches = command().get_matches_from(args);
+    Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
 }
 
 /// Runs the parsed command; returns the process exit status (the editor's is 128 + the signal's
 /// number when a signal ended it).
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
+    let location = config::location(|k| std::env::var(k).ok());
+    let defaults = || -> anyhow::Result<config::Defaults> {
+        if cli.no_config {
+            Ok(config::Defaults::default())
+        } else {
+            config::load(location.as_ref())
+        }
+    };
     match cli.command {
-        Some(Command::Render(args)) => render::run(&args),
+        Some(Command::Render(args)) => render::run(&args, &defaults()?),
         Some(Command::Join(args)) => join::run(&args),
-        Some(Command::View(args)) => view::run(&args).map(|()| ExitCode::SUCCESS),
+        Some(Command::View(args)) => view::run(&args, &defaults()?).map(|()| ExitCode::SUCCESS),
+        Some(Command::Completions { shell }) => {
+            let mut script = Vec::new();
+            clap_complete::generate(shell, &mut command(), "rastray", &mut script);
+            stdout::bytes(&script);
+            Ok(ExitCode::SUCCESS)
+        }
+        Some(Command::Man) => {
+            let mut page = Vec::new();
+            clap_mangen::Man::new(command()).render(&mut page)?;
+            stdout::bytes(&page);
+            Ok(ExitCode::SUCCESS)
+        }
+        Some(Command::Config) => {
+            stdout::bytes(config::describe(location.as_ref(), cli.no_config)?.as_bytes());
+            Ok(ExitCode::SUCCESS)
+        }
         Some(Command::Info { scene, up }) => info::run(&scene, up).map(|()| ExitCode::SUCCESS),
         Some(Command::Bench(args)) => bench::run_bench(&args).map(|()| ExitCode::SUCCESS),
         None => {
+            let defaults = defaults()?;
+            refuse_new_scene_without_toml(cli.scene.as_deref())?;
             refuse_dumb_terminal(std::env::var("TERM").ok().as_deref())?;
-            let request = cli.graphics.editor_request()?;
-            let startup =
-                rastray::tui::color_probe::detect(cli.color.map(ColorMode::from), request);
+            let graphics = cli.graphics.or(defaults.graphics).unwrap_or_default();
+            let request = graphics.editor_request()?;
+            let color = cli.color.or(defaults.color);
+            let startup = rastray::tui::color_probe::detect(color.map(ColorMode::from), request);
+            let up = cli.up.or(defaults.up);
             refuse_up_without_model(cli.scene.as_deref(), cli.up)?;
-            let exit = rastray::tui::run(cli.scene, cli.up.unwrap_or_default(), startup)?;
+            let exit = rastray::tui::run(cli.scene, up.unwrap_or_default(), startup)?;
             Ok(ExitCode::from(exit.code()))
         }
     }
+}
+
+/// A scene that does not exist yet is made by the editor under the name given: that name must
+/// end in `.toml`, so that a mistyped word never becomes a new scene.
+fn refuse_new_scene_without_toml(path: Option<&Path>) -> anyhow::Result<()> {
+    let Some(path) = path else {
+        return Ok(());
+    };
+    let toml = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    if !toml && std::fs::symlink_metadata(path).is_err() {
+        anyhow::bail!(
+            "{}: no such file; a new scene needs a .toml name (`rastray {}.toml`), and the commands are listed by `rastray --help`",
+            Escaped(&path.display().to_string()),
+            Escaped(&path.with_extension("").display().to_string())
+        );
+    }
+    Ok(())
 }
 
 /// The editor moves the cursor and redraws the screen: a terminal that says it cannot

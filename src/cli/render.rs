@@ -15,9 +15,11 @@ use rastray::text_escape::Escaped;
 use super::algorithm_arg::AlgorithmArg;
 use super::batch_plan;
 use super::batch_run;
+use super::config::Defaults;
 use super::format_arg::FormatArg;
 use super::frames_arg::FrameRange;
 use super::shard_arg::Shard;
+use super::stdin_model::InputFormat;
 
 /// The image size unless asked otherwise.
 pub const DEFAULT_SIZE: Size = Size {
@@ -87,21 +89,29 @@ pub struct RenderArgs {
     pub shard: Option<Shard>,
     #[command(flatten)]
     pub display: super::display_args::DisplayArgs,
+    /// The format of a model read from standard input (`-`); the limits of a model file apply.
+    #[arg(long, value_enum)]
+    pub input_format: Option<InputFormat>,
 }
 
-pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
+/// Renders what `args` ask for; flags the command line leaves out take the config file's
+/// `defaults`, then the built-in ones.
+pub fn run(args: &RenderArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
     let turntable = args.turntable.map(|frames| Turntable {
         frames,
         fps: args.fps,
     });
-    let algorithm = args.algorithm.map_or(Algorithm::Phong, |a| a.0);
-    let size = args.size.unwrap_or(DEFAULT_SIZE);
+    let algorithm = args
+        .algorithm
+        .or(defaults.algorithm)
+        .map_or(Algorithm::Phong, |a| a.0);
+    let size = args.size.or(defaults.size).unwrap_or(DEFAULT_SIZE);
     let options = args.display.apply(RenderOptions {
-        samples: args.samples.unwrap_or(1),
+        samples: args.samples.or(defaults.samples).unwrap_or(1),
         shadows: !args.no_shadows,
         max_depth: args.max_depth,
         alpha: args.transparent,
-        threads: args.threads,
+        threads: args.threads.or(defaults.threads),
         ..RenderOptions::new(algorithm, size.width, size.height)
     });
     let plan = batch_plan::plan(&batch_plan::Request {
@@ -118,6 +128,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         options,
         size,
         up: args.up,
+        default_up: defaults.up,
+        input_format: args.input_format,
         turntable,
         make_folders: OutputTemplate::parse(&args.output)?.has_fields(),
         display: args.display.clone(),

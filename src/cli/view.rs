@@ -14,6 +14,7 @@ use rastray::terminal_image::{CellArea, CellSize, Protocol};
 use rastray::tui::preview::PreviewImage;
 
 use super::algorithm_arg::AlgorithmArg;
+use super::config::Defaults;
 use super::graphics_arg::GraphicsArg;
 
 /// Width / height of the picture: the shape of `rastray render`'s default 1920×1080.
@@ -31,25 +32,33 @@ pub struct ViewArgs {
     /// -y, -z); CAD files are usually z. Default y.
     #[arg(long, value_parser = super::up_arg::parse_up, allow_hyphen_values = true)]
     pub up: Option<rastray::scene::UpAxis>,
-    /// Algorithm.
-    #[arg(short, long, value_enum, default_value_t = AlgorithmArg(Algorithm::Phong))]
-    pub algorithm: AlgorithmArg,
+    /// Algorithm (default phong, or the config file's).
+    #[arg(short, long, value_enum)]
+    pub algorithm: Option<AlgorithmArg>,
     /// Width in terminal columns (default: the terminal's width, or 80).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=2000))]
     pub width: Option<u32>,
-    /// How to draw: guessed from the environment, or one protocol.
-    #[arg(long, value_enum, default_value_t = GraphicsArg::Auto)]
-    pub graphics: GraphicsArg,
+    /// How to draw: guessed from the environment, or one protocol (default auto, or the config
+    /// file's).
+    #[arg(long, value_enum)]
+    pub graphics: Option<GraphicsArg>,
     #[command(flatten)]
     pub display: super::display_args::DisplayArgs,
 }
 
-pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
-    let (scene, base) = super::load_scene(args.scene.as_deref(), args.up)?;
+pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<()> {
+    let up = args.up.or(defaults.up.filter(|_| {
+        args.scene
+            .as_deref()
+            .is_some_and(rastray::model_scene::is_model_file)
+    }));
+    let (scene, base) = super::load_scene(args.scene.as_deref(), up)?;
     let stdout = std::io::stdout();
     let is_terminal = stdout.is_terminal();
     let protocol = args
         .graphics
+        .or(defaults.graphics)
+        .unwrap_or_default()
         .view_protocol()
         .unwrap_or_else(|| Protocol::detect(is_terminal, |k| std::env::var(k).ok()));
     let terminal_cols = is_terminal
@@ -60,9 +69,13 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     let cell = CellSize::default();
     let area = CellArea::for_aspect(cols, ASPECT, cell);
     let (width, height) = protocol.picture_size(area, cell);
+    let algorithm = args
+        .algorithm
+        .or(defaults.algorithm)
+        .map_or(Algorithm::Phong, |a| a.0);
     let options = args
         .display
-        .apply(RenderOptions::new(args.algorithm.0, width, height));
+        .apply(RenderOptions::new(algorithm, width, height));
     options.check()?;
     let world = Arc::new(World::build(&scene, &base)?);
     args.display.print_notes(&world);

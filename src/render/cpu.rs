@@ -78,6 +78,25 @@ pub(crate) fn has_avx512() -> bool {
         && is_x86_feature_detected!("avx512vl")
 }
 
+/// The instruction sets the renderer uses on this CPU, widest last: `AVX2` where
+/// [`with_avx2`] and the eight-lane shading run on them, `AVX-512` where the sixteen-lane
+/// shading does; empty on a CPU with neither (baseline x86-64 SSE2) or another architecture.
+pub fn cpu_features() -> Vec<&'static str> {
+    #[cfg(target_arch = "x86_64")]
+    {
+        let mut features = Vec::new();
+        if has_avx2_bmi() {
+            features.push("AVX2");
+        }
+        if has_avx512() {
+            features.push("AVX-512");
+        }
+        features
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    Vec::new()
+}
+
 /// `work()`, compiled for AVX2, BMI1/2 and LZCNT.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt")]

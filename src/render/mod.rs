@@ -34,6 +34,7 @@ mod triangle_edges;
 
 pub use algorithm::Algorithm;
 pub use camera::{NEAR, View};
+pub use cpu::cpu_features;
 pub use display_mode::{DisplayMode, UnknownMode};
 pub use error::RenderError;
 pub use frame::{Frame, decode_srgb, decode_srgb16, encode_srgb, encode_srgb16};
