@@ -71,6 +71,7 @@ fn a_broken_glb_is_reported_by_the_preview_worker() {
             width: 16,
             height: 16,
         }],
+        display: Default::default(),
     };
     let id = worker.request(
         wanted,

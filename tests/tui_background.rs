@@ -26,6 +26,7 @@ fn wanted(algorithm: Algorithm, width: u32, height: u32, generation: u64) -> Wan
             width,
             height,
         }],
+        display: Default::default(),
     }
 }
 

@@ -82,6 +82,7 @@ fn request(worker: &mut Worker, scene: Scene, generation: u64) -> u64 {
             width: 16,
             height: 12,
         }],
+        display: Default::default(),
     };
     worker.request(wanted, Arc::new(scene), PathBuf::from("."))
 }

@@ -40,7 +40,9 @@ pub use error::RenderError;
 pub use frame::{Frame, decode_srgb, decode_srgb16, encode_srgb, encode_srgb16};
 pub use mode_shading::{EDGE_HALF_WIDTH, objects_without_uvs};
 pub use options::{MAX_DIMENSION, MAX_SAMPLES, MAX_SAMPLES_TOTAL, RenderOptions, Size, SizeError};
-pub use overlay::{Grid, Overlays, UnknownOverlay, ground_grid, overlay_bounds};
+pub use overlay::{
+    Grid, OverlayKind, Overlays, UnknownOverlay, ground_grid, overlay_bounds, overlay_colors,
+};
 pub use progress::{Cancelled, Progress};
 #[cfg(test)]
 pub(crate) use raster::coverage_counts;

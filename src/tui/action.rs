@@ -3,7 +3,7 @@
 
 use super::mode::AddKind;
 use super::worker::RenderReply;
-use crate::render::Algorithm;
+use crate::render::{Algorithm, OverlayKind};
 
 /// One request to change the editor's state.
 #[derive(Debug, Clone, PartialEq)]
@@ -60,6 +60,10 @@ pub enum Action {
     Algorithm(Algorithm),
     /// Toggle the side-by-side view of the three algorithms.
     ToggleCompare,
+    /// Show the display mode this many places on in `DisplayMode::ALL` (negative: back).
+    CycleMode(i32),
+    /// Draw an overlay over the preview, or stop drawing it.
+    ToggleOverlay(OverlayKind),
     /// Turn the view around its target, degrees (yaw about +Y, pitch up).
     Orbit {
         yaw: f32,

@@ -49,6 +49,8 @@ pub struct Previews {
     pub compare: [Option<Shot>; 3],
     /// Triangles in the last world built.
     pub triangles: Option<usize>,
+    /// What the overlays and the `uv` mode of the last request measured.
+    pub measures: Option<crate::tui::worker::Measures>,
     /// The last exact frame of each slot: the main preview, then the compare panes.
     motion: [MotionFilter; 4],
 }

@@ -5,6 +5,7 @@ use ratatui::crossterm::event::KeyCode;
 
 use super::action::Action;
 use super::mode::AddKind;
+use crate::render::OverlayKind;
 use Context::*;
 
 /// Where a binding works.
@@ -207,6 +208,30 @@ pub const KEYS: &[Row] = &[
         context: Anywhere,
         bindings: &[act(&[ch('c')], Action::ToggleCompare)],
         what: "compare the three algorithms side by side",
+    },
+    Row {
+        context: Anywhere,
+        bindings: &[
+            act(&[ch('m')], Action::CycleMode(1)),
+            act(&[ch('M')], Action::CycleMode(-1)),
+        ],
+        what: "next / previous display mode (shaded, wire, normals…)",
+    },
+    Row {
+        context: Anywhere,
+        bindings: &[
+            act(&[ch('g')], Action::ToggleOverlay(OverlayKind::Grid)),
+            act(&[ch('G')], Action::ToggleOverlay(OverlayKind::Axes)),
+        ],
+        what: "ground grid / axis gizmo, on or off",
+    },
+    Row {
+        context: Anywhere,
+        bindings: &[
+            act(&[ch('b')], Action::ToggleOverlay(OverlayKind::Bbox)),
+            act(&[ch('O')], Action::ToggleOverlay(OverlayKind::Outline)),
+        ],
+        what: "bounding box / outline of the selection, on or off",
     },
     Row {
         context: Anywhere,

@@ -311,10 +311,19 @@ pub fn wanted(app: &App, picture: Rect, pixels: bool) -> Option<Wanted> {
             .into_iter()
             .collect()
     };
+    let selected_object = match app.item() {
+        selection::Item::Object(i) => Some(i),
+        _ => None,
+    };
     (!jobs.is_empty()).then_some(Wanted {
         generation: app.doc.generation(),
         camera: app.view.camera(),
         jobs,
+        display: worker::Display {
+            mode: app.view.mode(),
+            overlays: app.view.overlays(),
+            selected_object,
+        },
     })
 }
 

@@ -5,7 +5,7 @@
 use super::graphics::Graphics;
 use super::orbit;
 use super::preview::ColorMode;
-use crate::render::Algorithm;
+use crate::render::{Algorithm, DisplayMode, OverlayKind, Overlays};
 use crate::scene::{Camera, Scene, validate};
 
 /// What the preview shows and how. Fields change only through the methods below.
@@ -25,6 +25,10 @@ pub struct ViewState {
     plain: bool,
     /// Half blocks, or real pixels over a graphics protocol.
     graphics: Graphics,
+    /// How the preview shows surfaces.
+    mode: DisplayMode,
+    /// The overlays drawn over the preview (their selection is the editor's, set per render).
+    overlays: Overlays,
 }
 
 impl ViewState {
@@ -38,7 +42,29 @@ impl ViewState {
             show_timings: true,
             plain: false,
             graphics: Graphics::default(),
+            mode: DisplayMode::Shaded,
+            overlays: Overlays::default(),
         }
+    }
+
+    /// How the preview shows surfaces.
+    pub fn mode(&self) -> DisplayMode {
+        self.mode
+    }
+
+    /// Shows the display mode `steps` places on, wrapping around.
+    pub fn cycle_mode(&mut self, steps: i32) {
+        self.mode = self.mode.cycled(steps);
+    }
+
+    /// The overlays drawn over the preview.
+    pub fn overlays(&self) -> Overlays {
+        self.overlays
+    }
+
+    /// Turns overlay `kind` on or off.
+    pub fn toggle_overlay(&mut self, kind: OverlayKind) {
+        self.overlays.toggle(kind);
     }
 
     /// The camera the preview and the export look through.

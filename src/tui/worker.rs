@@ -8,10 +8,13 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 
 use super::preview::PreviewImage;
 use crate::World;
-use crate::render::{Algorithm, Frame, Progress, RenderError, RenderOptions, Renderer};
+use crate::render::{
+    Algorithm, DisplayMode, Frame, Overlays, Progress, RenderError, RenderOptions, Renderer,
+    ground_grid, objects_without_uvs, overlay_bounds,
+};
 use crate::scene::{Camera, Scene};
 use crate::warnings::{Warning, warnings};
-use crate::world::MeshFileCache;
+use crate::world::{MeshFileCache, WorldObjectSource};
 
 /// Where a rendered image goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -39,6 +42,29 @@ pub struct Wanted {
     pub generation: u64,
     pub camera: Camera,
     pub jobs: Vec<Job>,
+    /// How every job shows the scene.
+    pub display: Display,
+}
+
+/// The display mode and overlays of the previews, and what is selected.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Display {
+    pub mode: DisplayMode,
+    /// The overlays; their `selected` is ignored, worked out from `selected_object`.
+    pub overlays: Overlays,
+    /// The scene object selected in the editor (index into the scene's objects), if any.
+    pub selected_object: Option<usize>,
+}
+
+/// What the overlays and the `uv` mode show that the picture cannot say: for the status bar.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Measures {
+    /// The ground grid's spacing, world units, when the grid is drawn.
+    pub grid_spacing: Option<f32>,
+    /// Width, height and depth of the drawn bounding box, world units, when it is drawn.
+    pub box_size: Option<glam::Vec3>,
+    /// Objects without texture coordinates, when the `uv` mode is shown.
+    pub without_uvs: usize,
 }
 
 /// A request as sent to the thread.
@@ -67,6 +93,9 @@ pub enum RenderReply {
     },
     /// The world could not be built or the image not rendered.
     Failed { id: u64, message: String },
+    /// What the request's overlays and mode measured, sent before its images when it has
+    /// overlays or shows `uv`.
+    Measured { id: u64, measures: Measures },
     /// The warnings of a newly built world, sent before its first image; an empty list when
     /// the world before had some and this one has none.
     Warned { id: u64, warnings: Vec<Warning> },
@@ -78,6 +107,7 @@ impl RenderReply {
         match self {
             RenderReply::Shot { id, .. }
             | RenderReply::Failed { id, .. }
+            | RenderReply::Measured { id, .. }
             | RenderReply::Warned { id, .. } => *id,
         }
     }
@@ -128,7 +158,7 @@ impl Worker {
 /// The thread's loop: take the newest request, build the world if needed, render each job.
 fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
     let mut cache = MeshFileCache::default();
-    let mut world: Option<(u64, Arc<World>)> = None;
+    let mut world: Option<(u64, Arc<World>, Arc<[WorldObjectSource]>)> = None;
     // Keeps the ray tracer's BVH of the current world while only the camera moves.
     let mut renderer: Option<Renderer> = None;
     let mut frame = Frame::default();
@@ -142,10 +172,11 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
             continue;
         }
         let generation = request.wanted.generation;
-        let current = match &world {
-            Some((g, w)) if *g == generation => w.clone(),
-            _ => match World::build_cached(&request.scene, &request.base_dir, &mut cache) {
-                Ok(w) => {
+        let (current, sources) = match &world {
+            Some((g, w, s)) if *g == generation => (w.clone(), s.clone()),
+            _ => match World::build_report(&request.scene, &request.base_dir, &mut cache) {
+                Ok(report) => {
+                    let w = report.world;
                     let found = warnings(&request.scene, &request.wanted.camera, &w);
                     // While there are none, and were none, only images are sent.
                     if !(found.is_empty() && warned.is_empty()) {
@@ -155,9 +186,9 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
                         });
                     }
                     warned = found;
-                    let w = Arc::new(w);
-                    world = Some((generation, w.clone()));
-                    w
+                    let (w, s) = (Arc::new(w), Arc::<[_]>::from(report.sources));
+                    world = Some((generation, w.clone(), s.clone()));
+                    (w, s)
                 }
                 Err(e) => {
                     reply(RenderReply::Failed {
@@ -168,9 +199,44 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
                 }
             },
         };
+        let display = request.wanted.display;
+        let selected = display
+            .selected_object
+            .and_then(|object| world_objects_of(&sources, object));
+        // The outline is the selection's: with no object selected there is none to draw.
+        let overlays = Overlays {
+            selected,
+            outline: display.overlays.outline && selected.is_some(),
+            ..display.overlays
+        };
+        if overlays.any() || display.mode == DisplayMode::Uv {
+            let measures = Measures {
+                grid_spacing: overlays
+                    .grid
+                    .then(|| ground_grid(&current).map(|g| g.spacing))
+                    .flatten(),
+                box_size: overlays
+                    .bbox
+                    .then(|| overlay_bounds(&current, overlays.selected).map(|(lo, hi)| hi - lo))
+                    .flatten(),
+                without_uvs: if display.mode == DisplayMode::Uv {
+                    objects_without_uvs(&current)
+                } else {
+                    0
+                },
+            };
+            reply(RenderReply::Measured {
+                id: request.id,
+                measures,
+            });
+        }
         let count = request.wanted.jobs.len();
         for (n, job) in request.wanted.jobs.iter().enumerate() {
-            let options = RenderOptions::new(job.algorithm, job.width, job.height);
+            let options = RenderOptions {
+                mode: display.mode,
+                overlays,
+                ..RenderOptions::new(job.algorithm, job.width, job.height)
+            };
             let renderer = renderer.get_or_insert_with(|| Renderer::new(options));
             renderer.set_options(options);
             let camera = &request.wanted.camera;
@@ -194,4 +260,15 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
             }
         }
     }
+}
+
+/// The world objects (`first..end`) made from scene object `object`: one, or a glTF model's
+/// parts, which are built next to each other; `None` when it made none.
+fn world_objects_of(sources: &[WorldObjectSource], object: usize) -> Option<(u32, u32)> {
+    let first = sources.iter().position(|s| s.object == object)?;
+    let count = sources[first..]
+        .iter()
+        .take_while(|s| s.object == object)
+        .count();
+    Some((first as u32, (first + count) as u32))
 }

@@ -11,8 +11,9 @@ mod outline;
 mod set;
 
 pub use bounds_box::overlay_bounds;
+pub use colors as overlay_colors;
 pub use grid::{Grid, ground_grid};
-pub use set::{Overlays, UnknownOverlay};
+pub use set::{OverlayKind, Overlays, UnknownOverlay};
 
 pub(super) use canvas::Canvas;
 
@@ -20,11 +21,15 @@ use super::surface_hit::SurfaceHit;
 use crate::world::World;
 
 /// Line colours, linear RGB.
-mod colors {
+pub mod colors {
     use glam::Vec3;
+    /// The ground grid.
     pub const GRID: Vec3 = Vec3::new(0.32, 0.32, 0.36);
+    /// The bounding box.
     pub const BOUNDS: Vec3 = Vec3::new(1.0, 0.75, 0.05);
+    /// The outline of the selection.
     pub const OUTLINE: Vec3 = Vec3::new(1.0, 0.35, 0.0);
+    /// The gizmo's X, Y and Z.
     pub const AXES: [Vec3; 3] = [
         Vec3::new(0.9, 0.08, 0.05),
         Vec3::new(0.1, 0.75, 0.1),

@@ -42,6 +42,28 @@ impl Overlays {
     }
 }
 
+/// One overlay, as a key toggles it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum OverlayKind {
+    Grid,
+    Axes,
+    Bbox,
+    Outline,
+}
+
+impl Overlays {
+    /// Turns `kind` on when it is off, off when it is on.
+    pub fn toggle(&mut self, kind: OverlayKind) {
+        let flag = match kind {
+            OverlayKind::Grid => &mut self.grid,
+            OverlayKind::Axes => &mut self.axes,
+            OverlayKind::Bbox => &mut self.bbox,
+            OverlayKind::Outline => &mut self.outline,
+        };
+        *flag = !*flag;
+    }
+}
+
 /// A name in an overlay list that is not an overlay.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("`{0}` is not an overlay: use grid, axes, bbox or outline, comma-separated")]

@@ -205,6 +205,8 @@ pub(super) fn start_export(app: &mut App, form: &ExportForm) -> Result<(), Strin
     let options = RenderOptions {
         samples,
         alpha: form.transparent,
+        // In the preview's display mode; overlays are the preview's and `--overlay`'s.
+        mode: app.view.mode(),
         ..RenderOptions::new(form.algorithm, size.width, size.height)
     };
     options.check().map_err(|e| e.to_string())?;

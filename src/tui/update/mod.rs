@@ -112,6 +112,8 @@ fn normal(app: &mut App, action: Action) {
         Action::Export => open_export(app),
         Action::Algorithm(a) => app.view.show_algorithm(a),
         Action::ToggleCompare => app.view.toggle_compare(),
+        Action::CycleMode(steps) => app.view.cycle_mode(steps),
+        Action::ToggleOverlay(kind) => app.view.toggle_overlay(kind),
         Action::Orbit { yaw, pitch } => app.view.orbit(yaw, pitch),
         Action::Pan { right, up } => app.view.pan(right, up),
         Action::Zoom(f) => app.view.zoom(f),
@@ -237,6 +239,7 @@ fn rendered(app: &mut App, reply: RenderReply) {
             }
         }
         RenderReply::Failed { message, .. } => app.error(message),
+        RenderReply::Measured { measures, .. } => app.previews.measures = Some(measures),
         RenderReply::Warned { warnings, .. } => {
             let new: Vec<_> = warnings
                 .iter()

@@ -8,6 +8,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Gauge, Paragraph, Widget};
 
 use super::millis;
+use crate::render::DisplayMode;
 use crate::tui::app::{App, Tone};
 use crate::tui::mode::Mode;
 use crate::tui::selection::Focus;
@@ -82,6 +83,7 @@ impl Widget for StatusBar<'_> {
         if let Some(t) = app.previews.triangles {
             spans.extend([sep(), Span::raw(format!("{t} tris"))]);
         }
+        spans.extend(display_spans(app).into_iter().flat_map(|s| [sep(), s]));
         spans.extend([sep(), Span::raw(app.view.graphics().label())]);
         spans.push(sep());
         if app.doc.is_dirty() {
@@ -120,8 +122,54 @@ impl Widget for StatusBar<'_> {
     }
 }
 
+/// The display mode when it is not `shaded`, the grid's spacing and the bounding box's size
+/// when they are drawn, and the objects the `uv` mode cannot show.
+fn display_spans(app: &App) -> Vec<Span<'static>> {
+    let (mode, overlays) = (app.view.mode(), app.view.overlays());
+    let measures = app.previews.measures.unwrap_or_default();
+    let mut spans = Vec::new();
+    if mode != DisplayMode::Shaded {
+        spans.push(Span::styled(mode.name(), theme::ALGORITHM));
+    }
+    if let (true, Some(spacing)) = (overlays.grid, measures.grid_spacing) {
+        spans.push(Span::raw(format!("grid {spacing}")));
+    }
+    if let (true, Some(size)) = (overlays.bbox, measures.box_size) {
+        let [x, y, z] = size.to_array().map(short_number);
+        spans.push(Span::raw(format!("box {x}×{y}×{z}")));
+    }
+    if mode == DisplayMode::Uv && measures.without_uvs > 0 {
+        let n = measures.without_uvs;
+        let text = format!("{n} object{} without UVs", if n == 1 { "" } else { "s" });
+        spans.push(Span::styled(text, theme::WARNING));
+    }
+    spans
+}
+
+/// `value` with four significant digits at most and no trailing zeros: 2, 0.25, 1234, 0.001.
+fn short_number(value: f32) -> String {
+    let digits = 3 - value.abs().max(1e-9).log10().floor().clamp(-6.0, 3.0) as i32;
+    let text = format!("{:.*}", digits.max(0) as usize, value);
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    use super::short_number;
+
+    #[test]
+    fn numbers_keep_four_significant_digits_without_trailing_zeros() {
+        assert_eq!(short_number(2.0), "2");
+        assert_eq!(short_number(0.25), "0.25");
+        assert_eq!(short_number(14.000001), "14");
+        assert_eq!(short_number(1234.6), "1235");
+        assert_eq!(short_number(0.0012346), "0.001235");
+    }
+
     use super::fit_hints;
 
     #[test]
