@@ -3,9 +3,11 @@
 
 mod algorithm_arg;
 mod bench;
+mod camera_args;
 mod format_arg;
 mod graphics_arg;
 mod info;
+mod motion;
 mod render;
 mod stdout;
 mod up_arg;

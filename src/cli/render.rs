@@ -18,7 +18,12 @@ use rastray::render::{Algorithm, Progress, RenderOptions, Size};
 use rastray::text_escape::Escaped;
 use signal_hook::consts::{SIGINT, SIGTERM};
 
+use rastray::World;
+use rastray::preset_view::PresetView;
+use rastray::scene::Camera;
+
 use super::algorithm_arg::AlgorithmArg;
+use super::camera_args::{CameraArgs, output_for_view};
 use super::format_arg::FormatArg;
 use super::stdout::outln;
 
@@ -69,22 +74,35 @@ pub struct RenderArgs {
     #[arg(long, requires = "turntable", default_value_t = rastray::export::DEFAULT_FPS,
           value_parser = clap::value_parser!(u32).range(1..=MAX_FPS as i64))]
     pub fps: u32,
+    #[command(flatten)]
+    pub camera: CameraArgs,
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
+    args.camera.check(Some(&args.output))?;
     let turntable = args.turntable.map(|frames| Turntable {
         frames,
         fps: args.fps,
     });
-    let destination = if args.output == Path::new("-") {
-        Destination::Stdout
-    } else {
-        Destination::for_path(&args.output)?
+    // One output per preset view (the `{view}` field filled in), or the one output.
+    let views: Vec<Option<PresetView>> = match args.camera.view.as_slice() {
+        [] => vec![None],
+        views => views.iter().copied().map(Some).collect(),
     };
-    // The scene file first, before its name's extension is judged: `-o scene.toml` is told it
-    // is the scene. Its models are checked once the world has loaded them.
-    destination.refuse_inputs(args.scene.as_slice())?;
-    let output = Output::for_destination(&destination, args.format.map(|f| f.0), turntable)?;
+    let mut destinations = Vec::new();
+    for &view in &views {
+        let path = output_for_view(&args.output, view);
+        let destination = if path == Path::new("-") {
+            Destination::Stdout
+        } else {
+            Destination::for_path(&path)?
+        };
+        // The scene file first, before its name's extension is judged: `-o scene.toml` is
+        // told it is the scene. Its models are checked once the world has loaded them.
+        destination.refuse_inputs(args.scene.as_slice())?;
+        let output = Output::for_destination(&destination, args.format.map(|f| f.0), turntable)?;
+        destinations.push((destination, output));
+    }
     let (scene, base) = super::load_scene(args.scene.as_deref(), args.up)?;
     let options = RenderOptions {
         samples: args.samples,
@@ -96,11 +114,34 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     options.check()?;
     let report = super::build_world(&scene, &base)?;
     let inputs: Vec<PathBuf> = args.scene.iter().cloned().chain(report.inputs).collect();
-    destination.refuse_inputs(&inputs)?;
+    for (destination, _) in &destinations {
+        destination.refuse_inputs(&inputs)?;
+    }
     let world = Arc::new(report.world);
     super::print_warnings(&scene, &world);
-    if let (Output::Turntable(turntable, format), Destination::File(path)) = (output, &destination)
-    {
+    let aspect = args.size.width as f32 / args.size.height as f32;
+    let cameras = args.camera.cameras(&scene.camera, &world, aspect);
+    for ((_, camera), (destination, output)) in cameras.iter().zip(destinations) {
+        let code = render_one(args, &world, camera, &options, &destination, output)?;
+        if code != ExitCode::SUCCESS {
+            return Ok(code);
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Renders `world` through `camera` into `destination` as `output`, with a progress bar, and
+/// says what was written; a signal stops it with 128 + its number.
+fn render_one(
+    args: &RenderArgs,
+    world: &Arc<World>,
+    camera: &Camera,
+    options: &RenderOptions,
+    destination: &Destination,
+    output: Output,
+) -> anyhow::Result<ExitCode> {
+    let (world, options) = (world.clone(), *options);
+    if let (Output::Turntable(turntable, format), Destination::File(path)) = (output, destination) {
         warn_unless_room(turntable, format, &options, path);
     }
     let progress = Progress::new();
@@ -115,16 +156,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     let started = Instant::now();
     let exported = std::thread::scope(|s| {
-        let job = s.spawn(|| {
-            render_to(
-                &world,
-                &scene.camera,
-                &options,
-                output,
-                &destination,
-                &progress,
-            )
-        });
+        let job = s.spawn(|| render_to(&world, camera, &options, output, destination, &progress));
         let mut bar: Option<ProgressBar> = None;
         while !job.is_finished() {
             std::thread::sleep(Duration::from_millis(5));
@@ -181,7 +213,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         ),
     };
     // The image itself may be on standard output: the summary then goes to stderr.
-    if destination == Destination::Stdout {
+    if *destination == Destination::Stdout {
         let _ = writeln!(std::io::stderr(), "{summary}");
     } else {
         outln!("{summary}");

@@ -14,7 +14,9 @@ use rastray::terminal_image::{CellArea, CellSize, Protocol};
 use rastray::tui::preview::PreviewImage;
 
 use super::algorithm_arg::AlgorithmArg;
+use super::camera_args::CameraArgs;
 use super::graphics_arg::GraphicsArg;
+use super::motion::{self, MotionArgs, Picture, Shown};
 
 /// Width / height of the picture: the shape of `rastray render`'s default 1920×1080.
 const ASPECT: f32 = 16.0 / 9.0;
@@ -40,9 +42,14 @@ pub struct ViewArgs {
     /// How to draw: guessed from the environment, or one protocol.
     #[arg(long, value_enum, default_value_t = GraphicsArg::Auto)]
     pub graphics: GraphicsArg,
+    #[command(flatten)]
+    pub camera: CameraArgs,
+    #[command(flatten)]
+    pub motion: MotionArgs,
 }
 
 pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
+    args.camera.check(None)?;
     let (scene, base) = super::load_scene(args.scene.as_deref(), args.up)?;
     let stdout = std::io::stdout();
     let is_terminal = stdout.is_terminal();
@@ -60,9 +67,30 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     let (width, height) = protocol.picture_size(area, cell);
     let options = RenderOptions::new(args.algorithm.0, width, height);
     options.check()?;
+    let aspect = width as f32 / height as f32;
+    if args.motion.active() {
+        let picture = Picture {
+            protocol,
+            area,
+            options,
+        };
+        return motion::play(&args.motion, &picture, || {
+            let (scene, base) = super::load_scene(args.scene.as_deref(), args.up)?;
+            let report = super::build_world(&scene, &base)?;
+            let world = Arc::new(report.world);
+            let camera = args.camera.cameras(&scene.camera, &world, aspect)[0].1;
+            let inputs = args.scene.iter().cloned().chain(report.inputs).collect();
+            Ok(Shown {
+                world,
+                camera,
+                inputs,
+            })
+        });
+    }
     let world = Arc::new(World::build(&scene, &base)?);
+    let camera = args.camera.cameras(&scene.camera, &world, aspect)[0].1;
     let mut frame = Frame::default();
-    Renderer::new(options).render(&world, &scene.camera, &Progress::new(), &mut frame)?;
+    Renderer::new(options).render(&world, &camera, &Progress::new(), &mut frame)?;
     let bytes = protocol
         .encode(&PreviewImage::from_frame(&frame), area)
         .context("cannot encode the picture")?;
