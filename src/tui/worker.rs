@@ -70,6 +70,12 @@ pub enum RenderReply {
     /// The warnings of a newly built world, sent before its first image; an empty list when
     /// the world before had some and this one has none.
     Warned { id: u64, warnings: Vec<Warning> },
+    /// The axis-aligned bounds (min, max, world units) of a newly built world, `None` when it
+    /// is empty: what preset views and "fit all" fit.
+    Bounds {
+        id: u64,
+        bounds: Option<(glam::Vec3, glam::Vec3)>,
+    },
 }
 
 impl RenderReply {
@@ -78,7 +84,8 @@ impl RenderReply {
         match self {
             RenderReply::Shot { id, .. }
             | RenderReply::Failed { id, .. }
-            | RenderReply::Warned { id, .. } => *id,
+            | RenderReply::Warned { id, .. }
+            | RenderReply::Bounds { id, .. } => *id,
         }
     }
 }
@@ -155,6 +162,10 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
                         });
                     }
                     warned = found;
+                    reply(RenderReply::Bounds {
+                        id: request.id,
+                        bounds: w.bounds(),
+                    });
                     let w = Arc::new(w);
                     world = Some((generation, w.clone()));
                     w
