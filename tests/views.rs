@@ -262,3 +262,56 @@ fn spin_writes_one_picture_per_frame_and_exits_when_not_on_a_terminal() {
     );
     assert!(!o.stdout.is_empty());
 }
+
+#[test]
+fn watch_draws_again_when_the_scene_changes_and_stops_on_sigterm() {
+    use std::io::Read;
+    let dir = tempfile::tempdir().unwrap();
+    let scene = cube(dir.path());
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rastray"))
+        .args([
+            "view",
+            scene.to_str().unwrap(),
+            "--watch",
+            "--graphics",
+            "kitty",
+            "--width",
+            "10",
+        ])
+        .current_dir(dir.path())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .expect("runs");
+    let mut stdout = child.stdout.take().unwrap();
+    let (send, pictures) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut bytes = [0u8; 65536];
+        let mut all = Vec::new();
+        while let Ok(n) = stdout.read(&mut bytes) {
+            if n == 0 {
+                break;
+            }
+            all.extend_from_slice(&bytes[..n]);
+            let _ = send.send(String::from_utf8_lossy(&all).matches("a=T").count());
+        }
+    });
+    let wait_for = |n: usize| loop {
+        let seen = pictures
+            .recv_timeout(std::time::Duration::from_secs(60))
+            .expect("a picture in time");
+        if seen >= n {
+            break;
+        }
+    };
+    wait_for(1);
+    // A later modification time, whatever the file system's resolution.
+    std::thread::sleep(std::time::Duration::from_millis(1100));
+    std::fs::write(&scene, CUBE.replace("intensity = 1.0", "intensity = 0.5")).unwrap();
+    wait_for(2);
+    rustix::process::kill_process(
+        rustix::process::Pid::from_child(&child),
+        rustix::process::Signal::TERM,
+    )
+    .unwrap();
+    assert!(child.wait().unwrap().success());
+}
