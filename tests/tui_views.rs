@@ -157,3 +157,38 @@ fn auto_spin_turns_the_view_on_ticks_until_t_again() {
     assert_eq!(app.view().camera(), turned);
     unchanged_scene(&app);
 }
+
+/// The editor drawn on a 120×30 test terminal, as text.
+fn screen(app: &App) -> String {
+    use ratatui::Terminal;
+    use ratatui::backend::TestBackend;
+    let mut terminal = Terminal::new(TestBackend::new(120, 30)).unwrap();
+    terminal.draw(|f| f.render_widget(app, f.area())).unwrap();
+    let buffer = terminal.backend().buffer();
+    (0..30)
+        .map(|y| {
+            (0..120)
+                .map(|x| buffer[(x, y)].symbol())
+                .collect::<String>()
+                + "\n"
+        })
+        .collect()
+}
+
+#[test]
+fn the_preview_title_names_the_projection_the_preset_and_the_spin() {
+    let mut app = app();
+    assert!(!screen(&app).contains("ortho"));
+    apply(&mut app, Action::StepPresetView(-1));
+    apply(&mut app, Action::ToggleProjection);
+    apply(&mut app, Action::ToggleSpin);
+    let text = screen(&app);
+    assert!(
+        text.contains("Preview · Phong · ortho · iso · spinning"),
+        "{text}"
+    );
+    // A turn of the spin leaves the preset: the title stops naming it.
+    std::thread::sleep(Duration::from_millis(20));
+    apply(&mut app, Action::Tick);
+    assert!(screen(&app).contains("Preview · Phong · ortho · spinning"));
+}
