@@ -69,3 +69,23 @@ fn loops_end_the_turntable_on_their_own() {
     assert_eq!(count(&editor.output, BACK_TO_CORNER), 16 + 1);
     left_clean(&editor);
 }
+
+#[test]
+fn on_a_kitty_terminal_each_frame_replaces_the_last_as_one_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/default.toml");
+    let mut args = vec!["view", scene.to_str().unwrap()];
+    args.extend("--spin --frames 4 --loops 1 --graphics kitty --width 20".split(' '));
+    let mut editor = Editor::start(dir.path(), &args);
+    assert!(editor.wait().success());
+    // Four pictures, all transmitted as the same image id (each replaces the last).
+    let text = String::from_utf8_lossy(&editor.output).into_owned();
+    assert_eq!(text.matches("a=T").count(), 4);
+    let ids: std::collections::BTreeSet<&str> = text
+        .split("a=T,")
+        .skip(1)
+        .map(|s| s.split(',').find(|f| f.starts_with("i=")).expect("an id"))
+        .collect();
+    assert_eq!(ids.len(), 1, "{ids:?}");
+    left_clean(&editor);
+}

@@ -20,7 +20,7 @@ use rastray::World;
 use rastray::export::Turntable;
 use rastray::render::{Frame, Progress, RenderOptions, Renderer};
 use rastray::scene::Camera;
-use rastray::terminal_image::{CellArea, Protocol};
+use rastray::terminal_image::{CellArea, Protocol, kitty};
 use rastray::tui::pacer::{self, Pacer};
 use rastray::tui::preview::PreviewImage;
 use rastray::tui::term_input::{Reply, TermInput};
@@ -137,10 +137,7 @@ pub fn play(
                 shown.camera
             };
             renderer.render(&shown.world, &camera, &Progress::new(), &mut frame)?;
-            let bytes = picture
-                .protocol
-                .encode(&PreviewImage::from_frame(&frame), picture.area)
-                .context("cannot encode the picture")?;
+            let bytes = encode(picture, &PreviewImage::from_frame(&frame), interactive)?;
             screen.draw(&bytes, picture.protocol.has_pixels())?;
             if interactive && pacer.should_ask() {
                 screen.write(pacer::QUERY)?;
@@ -166,6 +163,20 @@ pub fn play(
         std::thread::sleep(pacer::LAST_ANSWER);
     }
     screen.finish()
+}
+
+/// The id of the picture a kitty terminal replaces frame after frame.
+const KITTY_IMAGE_ID: u32 = 7_390_001;
+
+/// The bytes of one frame. On a kitty terminal each frame replaces the last as the same image
+/// (one image id, the cursor left in place), so that the terminal does not keep them all.
+fn encode(picture: &Picture, image: &PreviewImage, terminal: bool) -> anyhow::Result<Vec<u8>> {
+    let bytes = if terminal && picture.protocol == Protocol::Kitty {
+        kitty::encode_pieces(image, picture.area, Some(KITTY_IMAGE_ID)).map(|p| p.concat())
+    } else {
+        picture.protocol.encode(image, picture.area)
+    };
+    bytes.context("cannot encode the picture")
 }
 
 /// One input: a key stops, an answer notes the frame drawn.
