@@ -25,6 +25,7 @@ fn million_triangles() -> (Scene, Arc<World>) {
             target: Vec3::ZERO,
             up: Vec3::Y,
             fov: 45.0,
+            ..Camera::default()
         },
         lights: vec![Light::default()],
         objects: vec![Object::new(Shape::Icosahedron {

@@ -34,6 +34,7 @@ pub mod input_file;
 pub mod mesh;
 pub mod model_folder;
 pub mod model_scene;
+pub mod preset_view;
 pub mod render;
 pub mod scene;
 pub mod temporary_file;

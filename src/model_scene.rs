@@ -101,6 +101,7 @@ fn framing_camera() -> Camera {
         target: Vec3::ZERO,
         up: Vec3::Y,
         fov: FOV,
+        ..Camera::default()
     }
 }
 

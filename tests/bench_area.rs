@@ -24,6 +24,7 @@ fn camera() -> Camera {
         target: -Vec3::Z,
         up: Vec3::Y,
         fov: 90.0,
+        ..Camera::default()
     }
 }
 

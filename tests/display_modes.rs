@@ -160,13 +160,18 @@ fn wire_edges_from_the_z_buffer_and_the_ray_tracer_agree() {
     // see different triangles at a pixel centre on a silhouette or shared edge. Stated
     // tolerance: under 3% of the edge pixels, and no pixel off by more than one from an edge
     // pixel of the other mask.
-    let scene = scene_with(
+    // In perspective and in orthographic projection: the edges' lines follow the projection.
+    let cameras = [
         "position = [0.5, 1.2, 4.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 45.0",
-        "[[object]]\ntype = \"icosahedron\"\ncenter = [-0.7, 0.0, 0.0]\nradius = 0.8\nsubdivisions = 1\n\
-         [[object]]\ntype = \"box\"\ncenter = [0.8, 0.0, -0.3]\nsize = [0.9, 0.9, 0.9]\nsegments = 2",
-    );
-    let size = (160, 100);
-    for samples in [1, 2] {
+        "position = [0.5, 1.2, 4.0]\ntarget = [0.0, 0.0, 0.0]\nprojection = \"orthographic\"\nheight = 2.6",
+    ];
+    for (camera, samples) in cameras.iter().flat_map(|c| [(c, 1), (c, 2)]) {
+        let scene = scene_with(
+            camera,
+            "[[object]]\ntype = \"icosahedron\"\ncenter = [-0.7, 0.0, 0.0]\nradius = 0.8\nsubdivisions = 1\n\
+             [[object]]\ntype = \"box\"\ncenter = [0.8, 0.0, -0.3]\nsize = [0.9, 0.9, 0.9]\nsegments = 2",
+        );
+        let size = (160, 100);
         let ray = wire_mask(&scene, Algorithm::Ray, size, samples);
         for algorithm in [Algorithm::Gouraud, Algorithm::Phong] {
             let zbuffer = wire_mask(&scene, algorithm, size, samples);

@@ -284,6 +284,7 @@ fn scene(eye: Vec3, objects: Vec<Object>) -> Scene {
             target: Vec3::ZERO,
             up: Vec3::Y,
             fov: 45.0,
+            ..Camera::default()
         },
         lights: lights(),
         objects,

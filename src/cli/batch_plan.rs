@@ -11,6 +11,7 @@ use anyhow::bail;
 use rastray::export::{
     Destination, Field, FieldValues, ImageFormat, Output, OutputTemplate, Turntable,
 };
+use rastray::preset_view::PresetView;
 use rastray::text_escape::Escaped;
 
 use super::frames_arg::FrameRange;
@@ -32,6 +33,8 @@ pub enum JobKind {
 pub struct Job {
     /// Position in [`Plan::inputs`].
     pub input: usize,
+    /// The preset view it is drawn from, or `None` for the scene's camera.
+    pub view: Option<PresetView>,
     pub kind: JobKind,
     pub destination: Destination,
     pub output: Output,
@@ -59,6 +62,8 @@ pub struct Request<'a> {
     pub shard: Option<Shard>,
     /// The algorithm's name, for `{algo}`.
     pub algo: &'a str,
+    /// The preset views (`--view`), each written as its own output; empty for the scene's camera.
+    pub views: &'a [PresetView],
 }
 
 impl Plan {
@@ -93,30 +98,44 @@ pub fn plan(request: &Request) -> anyhow::Result<Plan> {
     if batch && inputs.iter().any(|i| i.as_deref() == Some(Path::new("-"))) {
         bail!("standard input (`-`) is read as the only input of a render");
     }
-    if template.has(Field::View) {
+    if template.has(Field::View) && request.views.is_empty() {
         bail!("the output template's {{view}} field needs --view");
     }
+    if request.views.len() > 1 && !template.has(Field::View) {
+        bail!(
+            "{} views need an output template with a {{view}} field (-o 'out-{{view}}.png'); without it, give one view",
+            request.views.len()
+        );
+    }
+    let views: Vec<Option<PresetView>> = match request.views {
+        [] => vec![None],
+        views => views.iter().copied().map(Some).collect(),
+    };
     let frames = frame_numbers(&template, request)?;
     let mut all = Vec::new();
     for (i, input) in inputs.iter().enumerate() {
         let path = input.as_deref().unwrap_or(Path::new("default"));
-        let fill = |frame| {
-            template.fill(&FieldValues {
-                input: path,
-                index: i,
-                view: None,
-                algo: request.algo,
-                frame,
-            })
-        };
-        match &frames {
-            Some(frames) => all.extend(
-                frames
-                    .clone()
-                    .map(|k| (i, JobKind::Frame(k), fill(Some(k)))),
-            ),
-            None if request.turntable.is_some() => all.push((i, JobKind::Animation, fill(None))),
-            None => all.push((i, JobKind::Still, fill(None))),
+        for &view in &views {
+            let fill = |frame| {
+                template.fill(&FieldValues {
+                    input: path,
+                    index: i,
+                    view: view.map(PresetView::name),
+                    algo: request.algo,
+                    frame,
+                })
+            };
+            match &frames {
+                Some(frames) => all.extend(
+                    frames
+                        .clone()
+                        .map(|k| (i, view, JobKind::Frame(k), fill(Some(k)))),
+                ),
+                None if request.turntable.is_some() => {
+                    all.push((i, view, JobKind::Animation, fill(None)))
+                }
+                None => all.push((i, view, JobKind::Still, fill(None))),
+            }
         }
     }
     refuse_repeats(&all, &inputs)?;
@@ -126,7 +145,7 @@ pub fn plan(request: &Request) -> anyhow::Result<Plan> {
         None => 0..all.len(),
     };
     let mut jobs = Vec::with_capacity(range.len());
-    for (input, kind, path) in all.drain(range) {
+    for (input, view, kind, path) in all.drain(range) {
         let destination = if path == Path::new("-") {
             Destination::Stdout
         } else {
@@ -142,6 +161,7 @@ pub fn plan(request: &Request) -> anyhow::Result<Plan> {
         let output = Output::for_destination(&destination, request.format, turntable)?;
         jobs.push(Job {
             input,
+            view,
             kind,
             destination,
             output,
@@ -181,7 +201,7 @@ fn frame_numbers(
 
 /// Refuses two outputs on one path (say two inputs with the same stem in two folders).
 fn refuse_repeats(
-    all: &[(usize, JobKind, PathBuf)],
+    all: &[(usize, Option<PresetView>, JobKind, PathBuf)],
     inputs: &[Option<PathBuf>],
 ) -> anyhow::Result<()> {
     let name = |i: usize| {
@@ -191,7 +211,7 @@ fn refuse_repeats(
             .unwrap_or_else(|| "the default scene".to_string())
     };
     let mut seen: HashMap<&Path, usize> = HashMap::new();
-    for (input, _, path) in all {
+    for (input, _, _, path) in all {
         if let Some(&before) = seen.get(path.as_path()) {
             bail!(
                 "{}: the output template names this file for {} and again for {}; add {{index}} or {{name}} to tell them apart",

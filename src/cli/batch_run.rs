@@ -43,6 +43,8 @@ pub struct Settings {
     pub make_folders: bool,
     /// The display mode and overlays, whose notes are printed for each input.
     pub display: super::display_args::DisplayArgs,
+    /// `--ortho`, `--view`, `--azimuth`, `--elevation`: where each job's camera stands.
+    pub camera: super::camera_args::CameraArgs,
 }
 
 /// Where the worker is, for the progress bar.
@@ -305,9 +307,13 @@ fn write_job(
             )
         })?;
     }
+    let aspect = settings.size.width as f32 / settings.size.height as f32;
+    let placed = settings
+        .camera
+        .camera_for(job.view, &loaded.scene.camera, &loaded.world, aspect);
     let camera = match (job.kind, settings.turntable) {
-        (JobKind::Frame(k), Some(turntable)) => turntable.camera(&loaded.scene.camera, k),
-        _ => loaded.scene.camera,
+        (JobKind::Frame(k), Some(turntable)) => turntable.camera(&placed, k),
+        _ => placed,
     };
     Ok(match job.output {
         Output::Image(format) => {

@@ -15,6 +15,7 @@ use rastray::text_escape::Escaped;
 use super::algorithm_arg::AlgorithmArg;
 use super::batch_plan;
 use super::batch_run;
+use super::camera_args::CameraArgs;
 use super::config::Defaults;
 use super::format_arg::FormatArg;
 use super::frames_arg::FrameRange;
@@ -92,11 +93,14 @@ pub struct RenderArgs {
     /// The format of a model read from standard input (`-`); the limits of a model file apply.
     #[arg(long, value_enum)]
     pub input_format: Option<InputFormat>,
+    #[command(flatten)]
+    pub camera: CameraArgs,
 }
 
 /// Renders what `args` ask for; flags the command line leaves out take the config file's
 /// `defaults`, then the built-in ones.
 pub fn run(args: &RenderArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
+    args.camera.check(Some(Path::new(&args.output)))?;
     let turntable = args.turntable.map(|frames| Turntable {
         frames,
         fps: args.fps,
@@ -122,6 +126,7 @@ pub fn run(args: &RenderArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
         frames: args.frames,
         shard: args.shard,
         algo: &AlgorithmArg(algorithm).spelling(),
+        views: &args.camera.view,
     })?;
     options.check()?;
     let settings = batch_run::Settings {
@@ -133,6 +138,7 @@ pub fn run(args: &RenderArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
         turntable,
         make_folders: OutputTemplate::parse(&args.output)?.has_fields(),
         display: args.display.clone(),
+        camera: args.camera.clone(),
     };
     batch_run::run(&plan, &settings)
 }

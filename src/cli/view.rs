@@ -14,8 +14,10 @@ use rastray::terminal_image::{CellArea, CellSize, Protocol};
 use rastray::tui::preview::PreviewImage;
 
 use super::algorithm_arg::AlgorithmArg;
+use super::camera_args::CameraArgs;
 use super::config::Defaults;
 use super::graphics_arg::GraphicsArg;
+use super::motion::{self, MotionArgs, Picture, Shown};
 
 /// Width / height of the picture: the shape of `rastray render`'s default 1920×1080.
 const ASPECT: f32 = 16.0 / 9.0;
@@ -44,9 +46,14 @@ pub struct ViewArgs {
     pub graphics: Option<GraphicsArg>,
     #[command(flatten)]
     pub display: super::display_args::DisplayArgs,
+    #[command(flatten)]
+    pub camera: CameraArgs,
+    #[command(flatten)]
+    pub motion: MotionArgs,
 }
 
 pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<()> {
+    args.camera.check(None)?;
     let up = args.up.or(defaults.up.filter(|_| {
         args.scene
             .as_deref()
@@ -77,10 +84,41 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<()> {
         .display
         .apply(RenderOptions::new(algorithm, width, height));
     options.check()?;
+    let aspect = width as f32 / height as f32;
+    if args.motion.active() {
+        let picture = Picture {
+            protocol,
+            area,
+            options,
+        };
+        return motion::play(&args.motion, &picture, || {
+            let (scene, base) = super::load_scene(args.scene.as_deref(), up)?;
+            let report = super::build_world(&scene, &base)?;
+            let world = Arc::new(report.world);
+            let camera = args.camera.camera_for(
+                args.camera.view.first().copied(),
+                &scene.camera,
+                &world,
+                aspect,
+            );
+            let inputs = args.scene.iter().cloned().chain(report.inputs).collect();
+            Ok(Shown {
+                world,
+                camera,
+                inputs,
+            })
+        });
+    }
     let world = Arc::new(World::build(&scene, &base)?);
     args.display.print_notes(&world);
+    let camera = args.camera.camera_for(
+        args.camera.view.first().copied(),
+        &scene.camera,
+        &world,
+        aspect,
+    );
     let mut frame = Frame::default();
-    Renderer::new(options).render(&world, &scene.camera, &Progress::new(), &mut frame)?;
+    Renderer::new(options).render(&world, &camera, &Progress::new(), &mut frame)?;
     let bytes = protocol
         .encode(&PreviewImage::from_frame(&frame), area)
         .context("cannot encode the picture")?;

@@ -270,6 +270,7 @@ mod tests {
             target: Vec3::new(1.0, 1.0, 0.0),
             up: Vec3::new(0.0, 2.0, 0.0),
             fov: 30.0,
+            ..Camera::default()
         };
         let turn = Turntable::new(4);
         assert_eq!(turn.camera(&camera, 0), camera);
@@ -292,6 +293,7 @@ mod tests {
             target: Vec3::ZERO,
             up: Vec3::Z,
             fov: 40.0,
+            ..Camera::default()
         };
         let quarter = turn.camera(&z_up, 1);
         assert!(

@@ -3,11 +3,16 @@
 //! Pixel (i, j), j = 0 the top row, has its centre at (i + 0.5, j + 0.5). Normalised device
 //! coordinates are x = 2(i + 0.5)/W − 1 and y = 1 − 2(j + 0.5)/H. The rasterizer projects a vertex
 //! to exactly the continuous pixel coordinates whose primary ray passes through it.
+//!
+//! Two projections share these coordinates. Perspective: rays leave the eye, and a point at depth
+//! w lands at NDC (x/w, y/w) of its clip coordinates. Orthographic: rays leave the plane through
+//! the eye, all along the view direction, and a point lands at NDC (x, y): the clip coordinates
+//! are the same expressions with `half_height` a world-space half height, and the divisor is 1.
 
 use glam::{Vec2, Vec3};
 
 use super::simd::{Lanes, V3};
-use crate::scene::Camera;
+use crate::scene::{Camera, Projection};
 
 /// Distance of the near clipping plane in front of the eye, world units.
 pub const NEAR: f32 = 1.0e-3;
@@ -23,8 +28,11 @@ pub struct View {
     pub right: Vec3,
     /// Unit up vector, perpendicular to both.
     pub up: Vec3,
-    /// tan(fov / 2): half the image height at distance 1.
-    pub tan_half_fov: f32,
+    /// Half the image height, world units: at distance 1 in perspective (tan(fov / 2)), at
+    /// every distance in orthographic.
+    pub half_height: f32,
+    /// Parallel rays (orthographic) rather than rays from the eye (perspective).
+    pub orthographic: bool,
     /// Width / height.
     pub aspect: f32,
     /// Image width in pixels.
@@ -48,7 +56,11 @@ impl View {
             forward,
             right,
             up,
-            tan_half_fov: (camera.fov.to_radians() * 0.5).tan(),
+            half_height: match (camera.projection, camera.height) {
+                (Projection::Orthographic, Some(height)) => 0.5 * height,
+                _ => (camera.fov.to_radians() * 0.5).tan(),
+            },
+            orthographic: camera.projection == Projection::Orthographic && camera.height.is_some(),
             aspect: width as f32 / height as f32,
             width,
             height,
@@ -73,21 +85,80 @@ impl View {
     /// (i, j) is (i + 0.5, j + 0.5).
     #[inline(always)]
     pub fn ray_direction(&self, x: f32, y: f32) -> Vec3 {
-        self.pixel_direction(x, y).normalize_or_zero().to_vec3()
+        self.ray(x, y).1.to_vec3()
+    }
+
+    /// Origin and unit direction of the primary ray through continuous pixel coordinates (x, y)
+    /// of each lane: from the eye (perspective), or from the pixel's point on the plane through
+    /// the eye, along the view direction (orthographic).
+    #[inline(always)]
+    pub fn ray<L: Lanes>(&self, x: L, y: L) -> (V3<L>, V3<L>) {
+        if self.orthographic {
+            (
+                V3::splat(self.eye) + self.pixel_offset(x, y),
+                V3::splat(self.forward),
+            )
+        } else {
+            (
+                V3::splat(self.eye),
+                self.pixel_direction(x, y).normalize_or_zero(),
+            )
+        }
     }
 
     /// Direction from the eye through continuous pixel coordinates (x, y) of each lane, scaled
     /// so that its component along `forward` is 1: the point at depth w on that ray is
-    /// `eye + direction·w`. Rays and rasterizer both call this.
+    /// `eye + direction·w` (perspective). Rays and rasterizer both call this.
     #[inline(always)]
     pub fn pixel_direction<L: Lanes>(&self, x: L, y: L) -> V3<L> {
+        let (sx, sy) = self.image_plane(x, y);
+        V3::splat(self.forward) + V3::splat(self.right) * sx + V3::splat(self.up) * sy
+    }
+
+    /// The image-plane offset of continuous pixel coordinates (x, y) of each lane, across the
+    /// view: on the plane through the eye (orthographic).
+    #[inline(always)]
+    fn pixel_offset<L: Lanes>(&self, x: L, y: L) -> V3<L> {
+        let (sx, sy) = self.image_plane(x, y);
+        V3::splat(self.right) * sx + V3::splat(self.up) * sy
+    }
+
+    /// Coordinates along `right` and `up` of continuous pixel coordinates (x, y) of each lane on
+    /// the image plane: at distance 1 (perspective) or through the eye (orthographic).
+    #[inline(always)]
+    fn image_plane<L: Lanes>(&self, x: L, y: L) -> (L, L) {
         let ndc_x = L::splat(2.0) * x / L::splat(self.width as f32) - L::splat(1.0);
         let ndc_y = L::splat(1.0)
             - L::splat(2.0) * (y + L::splat(self.row_offset as f32))
                 / L::splat(self.image_height as f32);
-        let sx = ndc_x * L::splat(self.tan_half_fov * self.aspect);
-        let sy = ndc_y * L::splat(self.tan_half_fov);
-        V3::splat(self.forward) + V3::splat(self.right) * sx + V3::splat(self.up) * sy
+        let sx = ndc_x * L::splat(self.half_height * self.aspect);
+        let sy = ndc_y * L::splat(self.half_height);
+        (sx, sy)
+    }
+
+    /// The surface point at depth `depth` (along the view direction) behind continuous pixel
+    /// coordinates (x, y) of each lane, and the unit direction from it toward the viewer.
+    #[inline(always)]
+    pub fn surface_point<L: Lanes>(&self, x: L, y: L, depth: L) -> (V3<L>, V3<L>) {
+        if self.orthographic {
+            let p = V3::splat(self.eye) + self.pixel_offset(x, y) + V3::splat(self.forward) * depth;
+            (p, -V3::splat(self.forward))
+        } else {
+            let ray = self.pixel_direction(x, y);
+            (
+                V3::splat(self.eye) + ray * depth,
+                (-ray).normalize_or_zero(),
+            )
+        }
+    }
+
+    /// Where the viewer is, for lighting a point anywhere in the view.
+    pub fn viewer(&self) -> Viewer {
+        if self.orthographic {
+            Viewer::Along(-self.forward)
+        } else {
+            Viewer::Eye(self.eye)
+        }
     }
 
     /// Homogeneous clip coordinates (x, y, w) of world point `p`: w is the depth along the view
@@ -96,19 +167,45 @@ impl View {
     pub fn to_clip(&self, p: Vec3) -> Vec3 {
         let d = p - self.eye;
         Vec3::new(
-            d.dot(self.right) / (self.tan_half_fov * self.aspect),
-            d.dot(self.up) / self.tan_half_fov,
+            d.dot(self.right) / (self.half_height * self.aspect),
+            d.dot(self.up) / self.half_height,
             d.dot(self.forward),
         )
+    }
+
+    /// What clip x and y are divided by to give NDC: w (perspective) or 1 (orthographic).
+    #[inline]
+    pub fn divisor(&self, c: Vec3) -> f32 {
+        if self.orthographic { 1.0 } else { c.z }
     }
 
     /// Continuous pixel coordinates (within this view's rows) of a clip-space point with w > 0.
     #[inline]
     pub fn clip_to_pixel(&self, c: Vec3) -> Vec2 {
-        let inv_w = 1.0 / c.z;
+        let inv_w = 1.0 / self.divisor(c);
         Vec2::new(
             (c.x * inv_w + 1.0) * 0.5 * self.width as f32,
             (1.0 - c.y * inv_w) * 0.5 * self.image_height as f32 - self.row_offset as f32,
         )
+    }
+}
+
+/// The viewer as lighting sees it: the direction toward it from a point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Viewer {
+    /// A perspective eye at this position.
+    Eye(Vec3),
+    /// An orthographic view: toward the viewer is this unit direction everywhere.
+    Along(Vec3),
+}
+
+impl Viewer {
+    /// Unit direction from points `p` toward the viewer.
+    #[inline(always)]
+    pub fn toward<L: Lanes>(&self, p: V3<L>) -> V3<L> {
+        match *self {
+            Viewer::Eye(eye) => (V3::splat(eye) - p).normalize_or_zero(),
+            Viewer::Along(direction) => V3::splat(direction),
+        }
     }
 }

@@ -65,7 +65,13 @@ impl SurfaceHit {
         let mesh = &world.objects[self.object as usize].mesh;
         let corners = mesh.triangles[self.triangle as usize].map(|i| mesh.normals[i as usize]);
         let n = self.blend(corners).normalize_or_zero();
-        let to_point = self.position(world) - view.eye;
+        // The direction the view looks at the point along: parallel rays see every point
+        // along `forward`.
+        let to_point = if view.orthographic {
+            view.forward
+        } else {
+            self.position(world) - view.eye
+        };
         if n.dot(to_point) > 0.0 { -n } else { n }
     }
 

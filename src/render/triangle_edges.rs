@@ -27,12 +27,15 @@ pub fn edge_distance(view: &View, corners: [Vec3; 3], x: f32, y: f32) -> f32 {
 /// World point `p` in homogeneous pixel coordinates (x·w, y·w, w) of `view`, as
 /// [`View::clip_to_pixel`] maps clip space: dividing by w gives its pixel coordinates.
 fn homogeneous_pixel(view: &View, p: Vec3) -> DVec3 {
-    let c = view.to_clip(p).as_dvec3();
+    let clip = view.to_clip(p);
+    // What x and y are divided by: w in perspective, 1 in orthographic.
+    let w = view.divisor(clip) as f64;
+    let c = clip.as_dvec3();
     let (width, height) = (view.width as f64, view.image_height as f64);
     DVec3::new(
-        (c.x + c.z) * 0.5 * width,
-        (c.z - c.y) * 0.5 * height - view.row_offset as f64 * c.z,
-        c.z,
+        (c.x + w) * 0.5 * width,
+        (w - c.y) * 0.5 * height - view.row_offset as f64 * w,
+        w,
     )
 }
 

@@ -63,6 +63,11 @@ pub const FOV: Limits = Limits {
     unit: "degrees",
     ..Limits::closed(0.0, 180.0, 1.0)
 };
+/// World-space height of an orthographic view, world units.
+pub const VIEW_HEIGHT: Limits = Limits {
+    open_min: true,
+    ..Limits::closed(0.0, FAR, 0.1)
+};
 /// Icosahedron subdivisions (8 gives 1,310,720 faces).
 pub const SUBDIVISIONS: CountLimits = CountLimits { min: 0, max: 8 };
 /// Segments per box or prism face edge (512 gives 3,145,728 box faces).

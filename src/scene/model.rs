@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use super::falloff::{Falloff, falloff_table};
 use super::object::Object;
+use super::projection::Projection;
 use super::vector::vec3;
 
 /// A whole scene as stored in a `.toml` file. Invariant after [`super::validate`]: every number
@@ -84,8 +85,15 @@ pub struct Camera {
     /// Approximate up direction; must not be parallel to the view direction.
     #[serde(deserialize_with = "vec3")]
     pub up: Vec3,
-    /// Vertical field of view in degrees, in (0, 180).
+    /// Vertical field of view in degrees, in (0, 180); perspective only.
     pub fov: f32,
+    /// Perspective (the default) or orthographic.
+    #[serde(skip_serializing_if = "Projection::is_perspective")]
+    pub projection: Projection,
+    /// World-space height of an orthographic view, world units, > 0; an orthographic camera
+    /// needs it, a perspective one keeps it for switching.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub height: Option<f32>,
 }
 
 impl Default for Camera {
@@ -95,6 +103,8 @@ impl Default for Camera {
             target: Vec3::ZERO,
             up: Vec3::Y,
             fov: 45.0,
+            projection: Projection::Perspective,
+            height: None,
         }
     }
 }

@@ -10,6 +10,7 @@ use super::limits::{self, CountLimits, Limits};
 use super::material::Material;
 use super::model::Scene;
 use super::object::Shape;
+use super::projection::Projection;
 
 /// A value out of its range: where it is and what is wrong.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -41,6 +42,9 @@ pub enum Problem {
     /// The camera's up direction has no part across the view direction.
     #[error("must not be parallel to the view direction")]
     UpAlongView,
+    /// An orthographic camera without its view height.
+    #[error("must be given for an orthographic camera (the view's height in world units)")]
+    NoViewHeight,
     /// A mesh object without a file.
     #[error("must name a model file")]
     NoPath,
@@ -144,6 +148,13 @@ pub fn validate(scene: &Scene) -> Check {
     coordinates(&cam.clone().key("target"), c.target)?;
     coordinates(&cam.clone().key("up"), c.up)?;
     number(&cam.clone().key("fov"), c.fov, limits::FOV)?;
+    match (c.projection, c.height) {
+        (_, Some(height)) => number(&cam.clone().key("height"), height, limits::VIEW_HEIGHT)?,
+        (Projection::Orthographic, None) => {
+            fail(&cam.clone().key("height"), Problem::NoViewHeight)?
+        }
+        (Projection::Perspective, None) => {}
+    }
     let dir = c.target - c.position;
     if dir.length_squared() < 1e-12 {
         fail(&cam.clone().key("target"), Problem::TargetAtPosition)?;

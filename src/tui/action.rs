@@ -78,6 +78,14 @@ pub enum Action {
     Zoom(f32),
     /// Put the view back at the scene's camera.
     ResetView,
+    /// Look from the next (1) or previous (−1) preset view, fitting the scene.
+    StepPresetView(i32),
+    /// Fit the scene's bounds in the view, from where it looks now.
+    FitAll,
+    /// Switch the view between perspective and orthographic, keeping the framing.
+    ToggleProjection,
+    /// Start or stop turning the view slowly about its target.
+    ToggleSpin,
     /// Make the view the scene's camera: an undoable edit.
     SceneCameraFromView,
     /// A mouse button went down at (column, row).

@@ -314,6 +314,29 @@ pub const KEYS: &[Row] = &[
     },
     Row {
         context: Anywhere,
+        bindings: &[
+            act(&[ch('v')], Action::StepPresetView(1)),
+            act(&[ch('V')], Action::StepPresetView(-1)),
+        ],
+        what: "next / previous preset view: front, sides, top, iso…",
+    },
+    Row {
+        context: Anywhere,
+        bindings: &[act(&[ch('f')], Action::FitAll)],
+        what: "fit the whole scene in the view",
+    },
+    Row {
+        context: Anywhere,
+        bindings: &[act(&[ch('p')], Action::ToggleProjection)],
+        what: "perspective / orthographic view, keeping the framing",
+    },
+    Row {
+        context: Anywhere,
+        bindings: &[act(&[ch('t')], Action::ToggleSpin)],
+        what: "turn the view slowly about its target (auto-spin) / stop",
+    },
+    Row {
+        context: Anywhere,
         bindings: &[act(&[ch('C')], Action::SceneCameraFromView)],
         what: "make the view the scene's camera (saved, undoable)",
     },

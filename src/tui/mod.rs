@@ -201,7 +201,10 @@ pub fn run(
                 // world built, whichever request built it: kept.
                 Event::Render(reply)
                     if reply.id() == state.latest
-                        || matches!(reply, RenderReply::Warned { .. }) =>
+                        || matches!(
+                            reply,
+                            RenderReply::Warned { .. } | RenderReply::Bounds { .. }
+                        ) =>
                 {
                     state.arrived(&reply);
                     Some(Action::Rendered(Box::new(reply)))

@@ -3,7 +3,7 @@
 use glam::Vec3;
 
 use crate::render::View;
-use crate::scene::Camera;
+use crate::scene::{Camera, Projection};
 
 /// Steepest pitch allowed, degrees: the view never lines up with the up vector.
 const MAX_PITCH: f32 = 89.0;
@@ -44,12 +44,18 @@ pub fn pan(camera: &Camera, right: f32, up: f32) -> Camera {
     }
 }
 
-/// `camera` with its distance to the target multiplied by `factor` (> 0).
+/// `camera` with its distance to the target multiplied by `factor` (> 0), and an
+/// orthographic camera's height with it (its distance alone changes nothing on screen).
 pub fn zoom(camera: &Camera, factor: f32) -> Camera {
     let offset = camera.position - camera.target;
     let r = (offset.length() * factor).max(MIN_DISTANCE);
+    let height = match camera.projection {
+        Projection::Orthographic => camera.height.map(|h| h * factor),
+        Projection::Perspective => camera.height,
+    };
     Camera {
         position: camera.target + offset.normalize_or(Vec3::Z) * r,
+        height,
         ..*camera
     }
 }

@@ -2,11 +2,19 @@
 //! Looking around is not editing: moving the view never touches the document. The view starts
 //! from the scene's camera, and `C` copies it back into the scene as an edit.
 
+use std::time::Instant;
+
+use glam::Vec3;
+
 use super::graphics::Graphics;
 use super::orbit;
 use super::preview::ColorMode;
+use crate::preset_view::{self, PresetView};
 use crate::render::{Algorithm, DisplayMode, OverlayKind, Overlays};
 use crate::scene::{Camera, Scene, validate};
+
+/// How fast auto-spin turns the view, degrees per second (a turn in 24 s).
+pub const SPIN_DEGREES_PER_SECOND: f32 = 15.0;
 
 /// What the preview shows and how. Fields change only through the methods below.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,6 +37,12 @@ pub struct ViewState {
     mode: DisplayMode,
     /// The overlays drawn over the preview (their selection is the editor's, set per render).
     overlays: Overlays,
+    /// The preset view last chosen, if the view still looks from it.
+    preset: Option<PresetView>,
+    /// The scene's bounds (min, max) as last built, for fitting; `None` for an empty scene.
+    bounds: Option<(Vec3, Vec3)>,
+    /// When auto-spin last turned the view, while it spins.
+    spinning_since: Option<Instant>,
 }
 
 impl ViewState {
@@ -44,6 +58,9 @@ impl ViewState {
             graphics: Graphics::default(),
             mode: DisplayMode::Shaded,
             overlays: Overlays::default(),
+            preset: None,
+            bounds: None,
+            spinning_since: None,
         }
     }
 
@@ -95,6 +112,7 @@ impl ViewState {
     /// Looks through `camera` (the scene's, on open, reset and scene camera edits).
     pub fn look_from(&mut self, camera: Camera) {
         self.camera = camera;
+        self.preset = None;
     }
 
     /// Turns the view about its target by `yaw` degrees around +Y and `pitch` degrees upward.
@@ -112,6 +130,80 @@ impl ViewState {
         self.move_to(orbit::zoom(&self.camera, factor));
     }
 
+    /// The preset view the view looks from, if it still does.
+    pub fn preset(&self) -> Option<PresetView> {
+        self.preset
+    }
+
+    /// Whether auto-spin is on.
+    pub fn spinning(&self) -> bool {
+        self.spinning_since.is_some()
+    }
+
+    /// Notes the scene's bounds as last built (`None` for an empty scene).
+    pub fn set_bounds(&mut self, bounds: Option<(Vec3, Vec3)>) {
+        self.bounds = bounds;
+    }
+
+    /// Looks from the preset `step` places after the current one (the first when none),
+    /// fitting the scene in a preview of `aspect` (width / height).
+    pub fn step_preset(&mut self, step: i32, aspect: f32) {
+        let next = match self.preset {
+            Some(view) => view.step(step),
+            None if step >= 0 => PresetView::ALL[0],
+            None => PresetView::Iso,
+        };
+        if let Some(bounds) = self.bounds {
+            self.move_to(preset_view::place(
+                &self.camera,
+                next,
+                0.0,
+                0.0,
+                bounds,
+                aspect,
+            ));
+            self.preset = Some(next);
+        }
+    }
+
+    /// Fits the scene in a preview of `aspect`, looking the way the view looks now.
+    pub fn fit_all(&mut self, aspect: f32) {
+        if let Some(bounds) = self.bounds {
+            let back = (self.camera.position - self.camera.target).normalize_or(Vec3::Z);
+            let up = crate::render::View::new(&self.camera, 1, 1).up;
+            let preset = self.preset;
+            self.move_to(preset_view::fit(&self.camera, back, up, bounds, aspect));
+            self.preset = preset;
+        }
+    }
+
+    /// Switches between perspective and orthographic, keeping the framing at the target.
+    pub fn toggle_projection(&mut self) {
+        let preset = self.preset;
+        self.move_to(self.camera.toggled_projection());
+        self.preset = preset;
+    }
+
+    /// Starts auto-spin at `now`, or stops it.
+    pub fn toggle_spin(&mut self, now: Instant) {
+        self.spinning_since = match self.spinning_since {
+            Some(_) => None,
+            None => Some(now),
+        };
+    }
+
+    /// While auto-spin is on, turns the view by the time since the last turn; returns whether
+    /// it turned.
+    pub fn spin(&mut self, now: Instant) -> bool {
+        let Some(since) = self.spinning_since else {
+            return false;
+        };
+        let seconds = now.saturating_duration_since(since).as_secs_f32();
+        self.spinning_since = Some(now);
+        self.orbit(seconds * SPIN_DEGREES_PER_SECOND, 0.0);
+        seconds > 0.0
+    }
+
     /// Takes `camera` when a scene file could hold it (finite, within range, not degenerate);
     /// a move that would leave those limits is ignored.
     fn move_to(&mut self, camera: Camera) {
@@ -123,6 +215,7 @@ impl ViewState {
         .is_ok()
         {
             self.camera = camera;
+            self.preset = None;
         }
     }
 

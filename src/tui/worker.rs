@@ -99,6 +99,12 @@ pub enum RenderReply {
     /// The warnings of a newly built world, sent before its first image; an empty list when
     /// the world before had some and this one has none.
     Warned { id: u64, warnings: Vec<Warning> },
+    /// The axis-aligned bounds (min, max, world units) of a newly built world, `None` when it
+    /// is empty: what preset views and "fit all" fit.
+    Bounds {
+        id: u64,
+        bounds: Option<(glam::Vec3, glam::Vec3)>,
+    },
 }
 
 impl RenderReply {
@@ -108,7 +114,8 @@ impl RenderReply {
             RenderReply::Shot { id, .. }
             | RenderReply::Failed { id, .. }
             | RenderReply::Measured { id, .. }
-            | RenderReply::Warned { id, .. } => *id,
+            | RenderReply::Warned { id, .. }
+            | RenderReply::Bounds { id, .. } => *id,
         }
     }
 }
@@ -186,6 +193,10 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
                         });
                     }
                     warned = found;
+                    reply(RenderReply::Bounds {
+                        id: request.id,
+                        bounds: w.bounds(),
+                    });
                     let (w, s) = (Arc::new(w), Arc::<[_]>::from(report.sources));
                     world = Some((generation, w.clone(), s.clone()));
                     (w, s)

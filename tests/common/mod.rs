@@ -73,3 +73,12 @@ pub fn scratch() -> &'static Path {
     DIR.get_or_init(|| tempfile::tempdir().expect("tempdir"))
         .path()
 }
+
+/// Runs the built `rastray` with `args` in folder `dir`, its output captured.
+pub fn rastray_in(args: &[&str], dir: &Path) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_rastray"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("runs")
+}

@@ -62,7 +62,8 @@ impl<L: Lanes8, const K: usize> Fragments<L, K> {
     }
 
     /// Divides the interpolants by 1/w (the fourth of the first varying's): the depth and
-    /// perspective-correct varyings.
+    /// perspective-correct varyings; in an orthographic view the fourth is −w and the
+    /// varyings are already affine.
     #[inline(always)]
     fn from_interpolants(
         y: u32,
@@ -71,11 +72,17 @@ impl<L: Lanes8, const K: usize> Fragments<L, K> {
         object: [u32; WIDTH],
         values: [[L; 4]; K],
     ) -> Fragments<L, K> {
-        let depth = L::splat(1.0) / values[0][3];
+        // The depth key is 1/w (> 0) in perspective, −w (< 0) in an orthographic view, whose
+        // varyings were interpolated unscaled.
+        let key = values[0][3];
         let zero = L::splat(0.0);
+        let perspective_depth = L::splat(1.0) / key;
+        let orthographic = key.lt(zero);
+        let depth = L::select(orthographic, -key, perspective_depth);
+        let scale = L::select(orthographic, L::splat(1.0), perspective_depth);
         let mut varying = [V3::new(zero, zero, zero); K];
         for (out, [vx, vy, vz, _]) in varying.iter_mut().zip(values) {
-            *out = V3::new(vx * depth, vy * depth, vz * depth);
+            *out = V3::new(vx * scale, vy * scale, vz * scale);
         }
         Fragments {
             y,

@@ -16,7 +16,7 @@ use super::shader::VaryingColor;
 use super::varying::Varying;
 use super::zbuffer::draw;
 use crate::mesh::Mesh;
-use crate::render::camera::View;
+use crate::render::camera::{View, Viewer};
 use crate::render::materials::{MaterialLanes, ObjectMaterials};
 use crate::render::prefetch;
 use crate::render::progress::{Cancelled, Progress};
@@ -37,13 +37,13 @@ pub fn render_gouraud(
         per_vertex,
     } = scratch;
     if world.objects.iter().any(|o| o.mesh.colors.is_some()) {
-        let mut parts = LitParts::new(world, view.eye, per_vertex);
+        let mut parts = LitParts::new(world, view.viewer(), per_vertex);
         let shader = SeparateSpecular::new(world);
         return draw::<3>(geometry, world, view, progress, &mut parts, &shader, out);
     }
     let mut colors = LitVertices {
         world,
-        eye: view.eye,
+        viewer: view.viewer(),
         lighting: Lighting::new(world),
         materials: ObjectMaterials::new(world),
         whole: per_vertex,
@@ -66,7 +66,7 @@ pub fn render_gouraud(
 /// its lanes.
 struct LitVertices<'a> {
     world: &'a World,
-    eye: Vec3,
+    viewer: Viewer,
     lighting: Lighting<'a>,
     materials: ObjectMaterials,
     /// Colours of every vertex, `[object][vertex]`, for the objects lit whole.
@@ -79,7 +79,7 @@ impl LitVertices<'_> {
     /// Colours of the eight vertices `p`, `n` of `object`.
     #[inline(always)]
     fn light<L: Lanes8>(&self, material: &MaterialLanes<L>, p: V3<L>, n: V3<L>) -> V3<L> {
-        let v = (V3::splat(self.eye) - p).normalize_or_zero();
+        let v = self.viewer.toward(p);
         self.lighting
             .shade_lanes(p, n, v, material, |_, _, facing| facing)
     }

@@ -17,6 +17,7 @@ use super::gouraud::{light_whole, next_corners, objects_lit_whole};
 use super::shader::Shader;
 use super::varying::Varying;
 use crate::mesh::Mesh;
+use crate::render::camera::Viewer;
 use crate::render::materials::{MaterialLanes, ObjectMaterials};
 use crate::render::prefetch;
 use crate::render::shading::Lighting;
@@ -28,7 +29,7 @@ use crate::world::World;
 /// vertices share its lanes.
 pub struct LitParts<'a> {
     world: &'a World,
-    eye: Vec3,
+    viewer: Viewer,
     lighting: Lighting<'a>,
     materials: ObjectMaterials,
     /// Per object, the two lit parts of every vertex, `D` (or the colour) for all vertices then
@@ -41,10 +42,10 @@ pub struct LitParts<'a> {
 impl<'a> LitParts<'a> {
     /// The vertex stage of `world` seen from `eye`, lighting whole objects into `whole`, the
     /// renderer's scratch kept from frame to frame.
-    pub fn new(world: &'a World, eye: Vec3, whole: &'a mut Vec<Vec<Vec3>>) -> LitParts<'a> {
+    pub fn new(world: &'a World, viewer: Viewer, whole: &'a mut Vec<Vec<Vec3>>) -> LitParts<'a> {
         LitParts {
             world,
-            eye,
+            viewer,
             lighting: Lighting::new(world),
             materials: ObjectMaterials::new(world),
             whole,
@@ -61,7 +62,7 @@ impl<'a> LitParts<'a> {
         p: V3<L>,
         n: V3<L>,
     ) -> (V3<L>, V3<L>) {
-        let v = (V3::splat(self.eye) - p).normalize_or_zero();
+        let v = self.viewer.toward(p);
         if self.world.objects[object].mesh.colors.is_some() {
             self.lighting
                 .shade_parts_lanes(p, n, v, material, |_, _, facing| facing)

@@ -184,11 +184,9 @@ impl<'a> PhongShader<'a> {
         varying: V3<P>,
         material: &MaterialLanes<P>,
     ) -> V3<P> {
-        let ray = self
+        let (p, v) = self
             .view
-            .pixel_direction(x + P::splat(0.5), P::splat(y as f32 + 0.5));
-        let p = V3::splat(self.view.eye) + ray * depth;
-        let v = (-ray).normalize_or_zero();
+            .surface_point(x + P::splat(0.5), P::splat(y as f32 + 0.5), depth);
         let n = varying.normalize_or_zero();
         self.lighting
             .shade_lanes(p, n, v, material, |_, _, facing| facing)

@@ -106,6 +106,17 @@ impl Run<'_> {
 
 /// Projects `positions` (world space) through `view` into `out`, as long.
 pub fn project(view: &View, positions: &[Vec3], out: Run<'_>) {
+    if view.orthographic {
+        project_with::<true>(view, positions, out);
+    } else {
+        project_with::<false>(view, positions, out);
+    }
+}
+
+/// [`project`] for one projection: `ORTHOGRAPHIC` divides clip x and y by 1 rather than w, and
+/// its guard band is |x|, |y| ≤ GUARD (the view volume a box rather than a pyramid).
+#[inline(always)]
+fn project_with<const ORTHOGRAPHIC: bool>(view: &View, positions: &[Vec3], out: Run<'_>) {
     debug_assert_eq!(positions.len(), out.vertices.len());
     let eye = V3::splat(view.eye);
     let (right, up, forward) = (
@@ -113,8 +124,8 @@ pub fn project(view: &View, positions: &[Vec3], out: Run<'_>) {
         V3::splat(view.up),
         V3::splat(view.forward),
     );
-    let scale_x = F32x8::splat(view.tan_half_fov * view.aspect);
-    let scale_y = F32x8::splat(view.tan_half_fov);
+    let scale_x = F32x8::splat(view.half_height * view.aspect);
+    let scale_y = F32x8::splat(view.half_height);
     let (one, half) = (F32x8::splat(1.0), F32x8::splat(0.5));
     let width = F32x8::splat(view.width as f32);
     let height = F32x8::splat(view.image_height as f32);
@@ -131,18 +142,20 @@ pub fn project(view: &View, positions: &[Vec3], out: Run<'_>) {
         let cy = d.dot(up) / scale_y;
         let w = d.dot(forward);
         // View::clip_to_pixel, then snapping.
-        let inv_w = one / w;
+        let divisor = if ORTHOGRAPHIC { one } else { w };
+        let inv_w = one / divisor;
         let px = (cx * inv_w + one) * half * width;
         let py = (one - cy * inv_w) * half * height - row_offset;
         let (x, y) = (round(px * subpixel), round(py * subpixel));
         let bit =
             |mask: F32x8, bit: u32| bytemuck::cast::<_, i32x8>(mask) & i32x8::splat(bit as i32);
-        let inside = w.cmp_ge(near) & cx.abs().cmp_le(guard * w) & cy.abs().cmp_le(guard * w);
+        let inside =
+            w.cmp_ge(near) & cx.abs().cmp_le(guard * divisor) & cy.abs().cmp_le(guard * divisor);
         let code = bit(w.cmp_lt(near), BEHIND)
-            | bit(cx.cmp_gt(w), PAST_RIGHT)
-            | bit(cx.cmp_lt(-w), PAST_LEFT)
-            | bit(cy.cmp_gt(w), PAST_TOP)
-            | bit(cy.cmp_lt(-w), PAST_BOTTOM)
+            | bit(cx.cmp_gt(divisor), PAST_RIGHT)
+            | bit(cx.cmp_lt(-divisor), PAST_LEFT)
+            | bit(cy.cmp_gt(divisor), PAST_TOP)
+            | bit(cy.cmp_lt(-divisor), PAST_BOTTOM)
             | (!bytemuck::cast::<_, i32x8>(inside) & i32x8::splat(NEEDS_CLIP as i32));
         // Lanes of x, y, code and w turned into one (x, y, code, w) vector per vertex.
         let halves = |v: i32x8| bytemuck::cast::<i32x8, [i32x4; 2]>(v);
@@ -204,6 +217,7 @@ mod tests {
             target: Vec3::ZERO,
             up: Vec3::Y,
             fov: 50.0,
+            ..Camera::default()
         };
         let view = View::new(&camera, 161, 97).rows(13, 40);
         let positions: Vec<Vec3> = (0..1000)

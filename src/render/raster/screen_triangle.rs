@@ -163,14 +163,25 @@ pub fn setup_triangle(
         pos: v[k],
         bary: OWN_BARY[k],
     };
-    // Sutherland–Hodgman in homogeneous space: near plane, then the guard band.
-    let planes: [fn(Vec3) -> f32; 5] = [
-        |p| p.z - NEAR,
-        |p| GUARD * p.z - p.x,
-        |p| GUARD * p.z + p.x,
-        |p| GUARD * p.z - p.y,
-        |p| GUARD * p.z + p.y,
-    ];
+    // Sutherland–Hodgman in homogeneous space: near plane, then the guard band (in an
+    // orthographic view the band's planes do not widen with depth).
+    let planes: [fn(Vec3) -> f32; 5] = if view.orthographic {
+        [
+            |p| p.z - NEAR,
+            |p| GUARD - p.x,
+            |p| GUARD + p.x,
+            |p| GUARD - p.y,
+            |p| GUARD + p.y,
+        ]
+    } else {
+        [
+            |p| p.z - NEAR,
+            |p| GUARD * p.z - p.x,
+            |p| GUARD * p.z + p.x,
+            |p| GUARD * p.z - p.y,
+            |p| GUARD * p.z + p.y,
+        ]
+    };
     let mut poly: Vec<ClipVertex> = vec![corner(0), corner(1), corner(2)];
     for plane in planes {
         let mut next = Vec::with_capacity(poly.len() + 1);
@@ -385,7 +396,7 @@ fn emit(
     }
     let (ref_x, ref_y) = (x[0] >> SUBPIXEL_BITS, y[0] >> SUBPIXEL_BITS);
     let weights = Weights::new(x, y, ref_x, ref_y, area);
-    let (at, per_x, per_y) = weights.plane(inverse(w));
+    let (at, per_x, per_y) = weights.plane(depth_key(view.orthographic, w));
     out.push(ScreenTriangle {
         x,
         y,
@@ -412,6 +423,26 @@ fn emit(
 #[inline(always)]
 fn inverse(w: [f32; 3]) -> [f64; 3] {
     w.map(|w| 1.0 / w as f64)
+}
+
+/// What the depth test compares at each vertex of depth `w`, larger nearer, affine in screen
+/// space: 1/w in perspective (positive), −w in an orthographic view (negative, since w ≥
+/// [`NEAR`]; the Z-buffer starts at −∞ there, and fragments tell the two apart by the sign).
+#[inline(always)]
+fn depth_key(orthographic: bool, w: [f32; 3]) -> [f64; 3] {
+    if orthographic {
+        w.map(|w| -(w as f64))
+    } else {
+        inverse(w)
+    }
+}
+
+/// What each vertex's varying is scaled by before it is interpolated: 1/w in perspective
+/// (interpolated, then divided by the interpolated 1/w: perspective-correct), 1 in an
+/// orthographic view (affine in screen space as it is).
+#[inline(always)]
+fn varying_scale(orthographic: bool, w: [f32; 3]) -> [f64; 3] {
+    if orthographic { [1.0; 3] } else { inverse(w) }
 }
 
 /// Each barycentric weight λk = (edge function opposite vertex k) / area is affine in the pixel
@@ -487,14 +518,20 @@ impl<const K: usize> Planes<K> {
 impl Corners {
     /// The planes of screen triangle `t`'s interpolants, given each varying at its mesh
     /// triangle's three vertices, `values[k]` (`self` are `t`'s corners). The varying of a
-    /// clipped vertex is interpolated from the mesh triangle's.
+    /// clipped vertex is interpolated from the mesh triangle's. In an `orthographic` view the
+    /// varying is affine in screen space and is interpolated unscaled.
     #[inline(always)]
-    pub fn planes<const K: usize>(&self, t: &ScreenTriangle, values: [[Vec3; 3]; K]) -> Planes<K> {
+    pub fn planes<const K: usize>(
+        &self,
+        t: &ScreenTriangle,
+        values: [[Vec3; 3]; K],
+        orthographic: bool,
+    ) -> Planes<K> {
         // The weights the plane of 1/w was set up with, worked out again from the same
         // integers: the same bits, and cheaper than keeping them for every triangle.
         let area = edge(t.x[0], t.y[0], t.x[1], t.y[1], t.x[2], t.y[2]);
         let weights = Weights::new(t.x, t.y, t.ref_x, t.ref_y, area);
-        let inv_w = inverse(self.w);
+        let inv_w = varying_scale(orthographic, self.w);
         let mut planes = Planes {
             ref_x: t.ref_x,
             ref_y: t.ref_y,

@@ -60,6 +60,9 @@ where
     pool.resize_with(threads, Default::default);
     let bands = geometry.set_up(world, view, varying);
     let varying = &*varying;
+    let orthographic = view.orthographic;
+    // The depth buffer before any triangle: below every 1/w (perspective), or every −w.
+    let nothing = if orthographic { f32::NEG_INFINITY } else { 0.0 };
     let drawn = out
         .par_chunks_mut((bands.rows * width) as usize)
         .enumerate()
@@ -76,7 +79,7 @@ where
             let BandBuffers { depth, id, .. } = buffers;
             // A block of eight lanes may start at any pixel: the buffers run on past the band.
             depth.clear();
-            depth.resize(rows.len() + WIDTH, 0.0);
+            depth.resize(rows.len() + WIDTH, nothing);
             id.clear();
             id.resize(rows.len() + WIDTH, 0);
             triangles.clear();
@@ -90,7 +93,16 @@ where
             let mut planes = std::mem::take(buffers.planes_of());
             with_avx2(
                 #[inline(always)]
-                || set_planes(triangles, &bands, varying, buffers, &mut planes),
+                || {
+                    set_planes(
+                        triangles,
+                        &bands,
+                        varying,
+                        buffers,
+                        &mut planes,
+                        orthographic,
+                    )
+                },
             );
             run_on_best_lanes(ShadeRows {
                 planes: &planes,
@@ -141,6 +153,7 @@ fn set_planes<const K: usize>(
     varying: &dyn Varying,
     buffers: &mut BandBuffers,
     planes: &mut Vec<Planes<K>>,
+    orthographic: bool,
 ) {
     let BandBuffers {
         seen,
@@ -177,7 +190,7 @@ fn set_planes<const K: usize>(
         let (values, _) = values.as_chunks::<K>();
         for (&id, values) in ids.iter().zip(values) {
             let t = triangles[id as usize - 1];
-            planes[id as usize] = bands.corners(t).planes(t, *values);
+            planes[id as usize] = bands.corners(t).planes(t, *values, orthographic);
         }
     }
 }

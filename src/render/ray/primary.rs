@@ -12,13 +12,13 @@ use crate::render::simd::{F32x8, V3, WIDTH};
 use crate::render::surface_hit::SurfaceHit;
 
 /// The primary rays of `view` through continuous pixel coordinates (`x`, `y`) of each lane:
-/// from the eye, unit directions, starting where the rasterizer's near plane cuts each ray, so
+/// from the eye (or the image plane, orthographic), unit directions, starting where the rasterizer's near plane cuts each ray, so
 /// that both see the same.
 #[inline]
 pub fn primary_packet(view: &View, x: F32x8, y: F32x8) -> RayPacket {
-    let dir = view.pixel_direction(x, y).normalize_or_zero();
+    let (origin, dir) = view.ray(x, y);
     let t_min = F32x8::splat(NEAR) / dir.dot(V3::splat(view.forward));
-    RayPacket::new(V3::splat(view.eye), dir, t_min)
+    RayPacket::new(origin, dir, t_min)
 }
 
 /// Writes 1 into `covered` where the primary ray through the pixel centre of `view` hits a

@@ -29,6 +29,7 @@ pub fn apply(app: &mut App, action: Action) {
         Action::Rendered(reply) => return rendered(app, *reply),
         Action::Tick => {
             poll_export(app);
+            app.ticked_change |= app.view.spin(std::time::Instant::now());
             return reload::poll_disk(app, std::time::Instant::now());
         }
         _ => {}
@@ -118,6 +119,10 @@ fn normal(app: &mut App, action: Action) {
         Action::Pan { right, up } => app.view.pan(right, up),
         Action::Zoom(f) => app.view.zoom(f),
         Action::ResetView => app.view.look_from(app.doc.scene().camera),
+        Action::StepPresetView(step) => app.view.step_preset(step, preview_aspect(app)),
+        Action::FitAll => app.view.fit_all(preview_aspect(app)),
+        Action::ToggleProjection => app.view.toggle_projection(),
+        Action::ToggleSpin => app.view.toggle_spin(std::time::Instant::now()),
         Action::SceneCameraFromView => camera_from_view(app),
         Action::DragStart { column, row } => app.drag = Some((column, row)),
         Action::DragTo { column, row } => {
@@ -254,5 +259,13 @@ fn rendered(app: &mut App, reply: RenderReply) {
             }
             app.warnings = warnings;
         }
+        RenderReply::Bounds { bounds, .. } => app.view.set_bounds(bounds),
     }
+}
+
+/// Width / height of the preview last drawn (16:9 before the first): what a fit fills.
+fn preview_aspect(app: &App) -> f32 {
+    app.previews.shot.as_ref().map_or(16.0 / 9.0, |s| {
+        s.image.width as f32 / s.image.height.max(1) as f32
+    })
 }

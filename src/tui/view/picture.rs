@@ -130,6 +130,16 @@ impl Widget for PreviewPane<'_> {
         } else {
             format!("Preview · {}", view.algorithm())
         };
+        // The view-only tools in use: the projection, the preset, the spin.
+        if view.camera().projection == crate::scene::Projection::Orthographic {
+            title.push_str(" · ortho");
+        }
+        if let Some(preset) = view.preset() {
+            title.push_str(&format!(" · {preset}"));
+        }
+        if view.spinning() {
+            title.push_str(" · spinning");
+        }
         if view.camera() != app.doc.scene().camera {
             // Looking around is not saved: say how to keep it.
             title.push_str(" · view moved, C keeps it");
