@@ -14,6 +14,7 @@ mod join;
 mod mistyped;
 mod render;
 mod shard_arg;
+mod sheet;
 mod stdin_model;
 mod stdout;
 mod up_arg;
