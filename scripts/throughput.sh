@@ -31,13 +31,14 @@ done
 files=("$work"/in/*)
 
 now() { date +%s.%N; }
-rate() { awk -v n="$1" -v a="$2" -v b="$3" 'BEGIN { printf "%.1f", n / (b - a) }'; }
+rate() { awk -v n="$1" -v a="$2" -v b="$3" 'BEGIN { printf "%.2f", n / (b - a) }'; }
 secs() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", b - a }'; }
 
 flags=(--no-config -a phong -s 256x256)
 
 t0=$(now)
-"$rastray" render "${flags[@]}" -o "$work/batch/{stem}.png" "${files[@]}" > /dev/null
+# Warnings (textures rastray does not draw) go to a log, not the table.
+"$rastray" render "${flags[@]}" -o "$work/batch/{stem}.png" "${files[@]}" > /dev/null 2>> "$work/log"
 t1=$(now)
 batch_rate=$(rate "$count" "$t0" "$t1")
 batch_secs=$(secs "$t0" "$t1")
@@ -45,7 +46,7 @@ batch_secs=$(secs "$t0" "$t1")
 mkdir -p "$work/each"
 t0=$(now)
 for f in "${files[@]}"; do
-  "$rastray" render "${flags[@]}" -o "$work/each/$(basename "$f").png" "$f" > /dev/null
+  "$rastray" render "${flags[@]}" -o "$work/each/$(basename "$f").png" "$f" > /dev/null 2>> "$work/log"
 done
 t1=$(now)
 each_rate=$(rate "$count" "$t0" "$t1")

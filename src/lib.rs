@@ -29,6 +29,7 @@
 
 pub mod atomic_file;
 pub mod bench;
+pub mod bundled_font;
 pub mod export;
 pub mod input_file;
 pub mod mesh;

@@ -39,6 +39,13 @@ fn three_models(dir: &Path) -> [&'static str; 3] {
     ["cube.obj", "box.glb", "wedge.stl"]
 }
 
+/// [`three_models`] and `broken.obj`, which fails on its first line.
+fn three_models_and_a_broken_one(dir: &Path) -> [&'static str; 4] {
+    let [a, b, c] = three_models(dir);
+    std::fs::write(dir.join("broken.obj"), "v 1 2\n").unwrap();
+    [a, b, c, "broken.obj"]
+}
+
 /// The files under `dir`, sorted, with their bytes.
 fn files(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
     let mut out: Vec<_> = std::fs::read_dir(dir)
@@ -59,17 +66,8 @@ fn files(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
 fn three_models_and_a_broken_file_give_three_images_an_error_line_and_a_summary() {
     let dir = tempfile::tempdir().unwrap();
     let at = dir.path();
-    let models = three_models(at);
-    std::fs::write(at.join("broken.obj"), "v 1 2\n").unwrap();
-    let mut args = vec![
-        "render",
-        "-s",
-        "24x16",
-        "-o",
-        "out/{stem}.png",
-        "broken.obj",
-    ];
-    args.extend(models);
+    let mut args = vec!["render", "-s", "24x16", "-o", "out/{stem}.png"];
+    args.extend(three_models_and_a_broken_one(at));
     let o = rastray(&args, at);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o.stderr));
     let written: Vec<PathBuf> = files(&at.join("out")).into_iter().map(|f| f.0).collect();
@@ -313,5 +311,37 @@ fn templated_outputs_stream_to_fifos() {
     for reader in readers {
         let bytes = reader.join().unwrap();
         assert!(bytes.starts_with(b"\x89PNG"), "a PNG came down the FIFO");
+    }
+}
+
+#[test]
+fn a_contact_sheet_lays_out_titled_thumbnails_and_skips_a_broken_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = dir.path();
+    let mut args = vec!["render", "--sheet", "sheet.png", "--cell", "40x30"];
+    args.extend(["--columns", "3"]);
+    args.extend(three_models_and_a_broken_one(at));
+    let o = rastray(&args, at);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o.stderr));
+    assert!(
+        text(&o.stderr).contains("error: broken.obj:1"),
+        "{}",
+        text(&o.stderr)
+    );
+    let sheet = image::open(at.join("sheet.png")).unwrap().to_rgb8();
+    // Three thumbnails in three columns: one row of 30 pixels and a 20-pixel title strip.
+    assert_eq!(sheet.dimensions(), (120, 50));
+    for column in 0..3 {
+        let strip = (column * 40..column * 40 + 40)
+            .flat_map(|x| (30..50).map(move |y| (x, y)))
+            .filter(|&(x, y)| sheet.get_pixel(x, y)[0] > 120)
+            .count();
+        assert!(strip > 10, "column {column} has a title");
+    }
+    // Each cell is the model's own 40x30 render.
+    ok(&["render", "-s", "40x30", "-o", "alone.png", "box.glb"], at);
+    let alone = image::open(at.join("alone.png")).unwrap().to_rgb8();
+    for (x, y) in [(5, 5), (20, 15), (35, 25)] {
+        assert_eq!(sheet.get_pixel(x, y), alone.get_pixel(x, y), "({x}, {y})");
     }
 }

@@ -2,11 +2,9 @@
 //! The font is DejaVu Sans, bundled in the binary, so no system font is needed.
 
 use std::path::Path;
-use std::sync::Once;
 
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
-use plotters::style::{FontStyle, register_font};
 
 use super::analysis::series;
 use super::error::BenchError;
@@ -22,8 +20,7 @@ pub const FACES_PLOT: &str = "time-vs-faces.png";
 /// Width and height of both plots, pixels.
 pub const PLOT_SIZE: (u32, u32) = (1200, 800);
 
-/// The family name the bundled font is registered under.
-pub(super) const FONT: &str = "sans-serif";
+pub(super) use crate::bundled_font::{FONT, register_bundled_font};
 /// The study's crossover areas, Mpx, drawn as vertical guides on the area plot.
 const STUDY_MARKS: [(f64, &str); 2] = [
     (3.28, "study: ray overtakes Z-buffer"),
@@ -37,15 +34,6 @@ pub(super) fn color(algorithm: Algorithm) -> RGBColor {
         Algorithm::Phong => RGBColor(255, 127, 14),
         Algorithm::Ray => RGBColor(44, 160, 44),
     }
-}
-
-/// Registers the bundled font once per process.
-pub(super) fn register_bundled_font() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        register_font(FONT, FontStyle::Normal, dejavu::sans::regular())
-            .unwrap_or_else(|_| panic!("the bundled DejaVu Sans font is a valid TrueType font"));
-    });
 }
 
 /// Draws both plots of `results` (measured at `size`) into `dir`.

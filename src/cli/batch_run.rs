@@ -163,10 +163,10 @@ fn inputs_of(plan: &Plan) -> Vec<usize> {
 }
 
 /// A loaded input: its scene, its world, and every file it was read from.
-struct Loaded {
-    scene: Scene,
-    world: Arc<World>,
-    files: Vec<PathBuf>,
+pub(super) struct Loaded {
+    pub scene: Scene,
+    pub world: Arc<World>,
+    pub files: Vec<PathBuf>,
 }
 
 /// The worker: every job of `plan`, in order.
@@ -203,7 +203,8 @@ fn work(
                 outcome.error = Some(error);
             }
         };
-        let loaded = match bar.suspend(|| load(plan, input, settings, &listed)) {
+        let path = plan.inputs[input].as_deref();
+        let loaded = match bar.suspend(|| load(path, settings, &listed)) {
             Ok(loaded) => loaded,
             Err(error) => {
                 status.done.fetch_add(jobs.len(), Ordering::Relaxed);
@@ -243,15 +244,14 @@ fn work(
     outcome
 }
 
-/// Loads input `input` of `plan` and builds its world; warnings go to stderr. `-` is a model
-/// read from standard input.
-fn load(
-    plan: &Plan,
-    input: usize,
+/// Loads the input at `path` (the default scene for `None`) and builds its world; warnings go
+/// to stderr. `-` is a model read from standard input. `listed` are every input of the run,
+/// which no output may overwrite.
+pub(super) fn load(
+    path: Option<&Path>,
     settings: &Settings,
     listed: &[PathBuf],
 ) -> anyhow::Result<Loaded> {
-    let path = plan.inputs[input].as_deref();
     if path == Some(Path::new("-")) {
         let Some(format) = settings.input_format else {
             anyhow::bail!(
@@ -373,7 +373,7 @@ fn summarise(
 }
 
 /// "SIGINT" or "SIGTERM", the signals a render stops on.
-fn signal_name(number: usize) -> &'static str {
+pub(super) fn signal_name(number: usize) -> &'static str {
     if number == SIGINT as usize {
         "SIGINT"
     } else {

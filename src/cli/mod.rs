@@ -17,6 +17,7 @@ mod mistyped;
 mod motion;
 mod render;
 mod shard_arg;
+mod sheet;
 mod stdin_model;
 mod stdout;
 mod up_arg;

@@ -20,6 +20,7 @@ use super::config::Defaults;
 use super::format_arg::FormatArg;
 use super::frames_arg::FrameRange;
 use super::shard_arg::Shard;
+use super::sheet;
 use super::stdin_model::InputFormat;
 
 /// The image size unless asked otherwise.
@@ -95,6 +96,16 @@ pub struct RenderArgs {
     pub input_format: Option<InputFormat>,
     #[command(flatten)]
     pub camera: CameraArgs,
+    /// Write one contact sheet of the inputs instead: a thumbnail of each, titled with its
+    /// file's stem, in a grid (PNG).
+    #[arg(long, value_name = "SHEET.png", conflicts_with_all = ["turntable", "shard", "output", "format", "transparent"])]
+    pub sheet: Option<PathBuf>,
+    /// Contact sheet: thumbnails per row (default: about square).
+    #[arg(long, requires = "sheet", value_parser = clap::value_parser!(u32).range(1..=1000))]
+    pub columns: Option<u32>,
+    /// Contact sheet: each thumbnail's size, WIDTHxHEIGHT (default 256x256).
+    #[arg(long, requires = "sheet", value_parser = super::parse_size)]
+    pub cell: Option<Size>,
 }
 
 /// Renders what `args` ask for; flags the command line leaves out take the config file's
@@ -118,17 +129,6 @@ pub fn run(args: &RenderArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
         threads: args.threads.or(defaults.threads),
         ..RenderOptions::new(algorithm, size.width, size.height)
     });
-    let plan = batch_plan::plan(&batch_plan::Request {
-        inputs: &args.inputs,
-        template: &args.output,
-        format: args.format.map(|f| f.0),
-        turntable,
-        frames: args.frames,
-        shard: args.shard,
-        algo: &AlgorithmArg(algorithm).spelling(),
-        views: &args.camera.view,
-    })?;
-    options.check()?;
     let settings = batch_run::Settings {
         options,
         size,
@@ -140,6 +140,32 @@ pub fn run(args: &RenderArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
         display: args.display.clone(),
         camera: args.camera.clone(),
     };
+    if let Some(path) = &args.sheet {
+        let cell = args.cell.unwrap_or(Size {
+            width: 256,
+            height: 256,
+        });
+        return sheet::run(
+            &args.inputs,
+            &settings,
+            sheet::SheetRequest {
+                path,
+                columns: args.columns,
+                cell,
+            },
+        );
+    }
+    let plan = batch_plan::plan(&batch_plan::Request {
+        inputs: &args.inputs,
+        template: &args.output,
+        format: args.format.map(|f| f.0),
+        turntable,
+        frames: args.frames,
+        shard: args.shard,
+        algo: &AlgorithmArg(algorithm).spelling(),
+        views: &args.camera.view,
+    })?;
+    settings.options.check()?;
     batch_run::run(&plan, &settings)
 }
 

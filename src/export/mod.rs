@@ -5,12 +5,13 @@
 //! the editor write renders; `format` chooses the encoding from a file name and an explicit
 //! request; `png`, `exr`, `gif_animation` and `apng` encode; `still` renders one image;
 //! `turntable` orbits the camera and streams its frames through `animation` into one file;
-//! `join` makes one animation of still PNG frames rendered apart; `template` names the outputs
+//! `contact_sheet` lays thumbnails out in a titled grid; `join` makes one animation of still PNG frames rendered apart; `template` names the outputs
 //! of many inputs and frames (`out/{stem}.png`); `destination` says where bytes go, and `stream` writes FIFOs, devices and standard output in
 //! waits that a signal can end.
 
 mod animation;
 mod apng;
+mod contact_sheet;
 mod destination;
 mod error;
 mod exr;
@@ -24,6 +25,9 @@ mod stream;
 mod template;
 mod turntable;
 
+pub use contact_sheet::{
+    SheetImage, SheetLayout, TITLE_HEIGHT, Thumbnail, compose_sheet, save_sheet,
+};
 pub use destination::{Destination, Sink};
 pub use error::ExportError;
 pub use exr::encode_exr;
