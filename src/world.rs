@@ -9,10 +9,11 @@ use std::time::SystemTime;
 use rayon::prelude::*;
 
 use crate::mesh::{
-    Mesh, MeshFile, MeshFileError, PlyModel, Sphere, StlModel, UniquePositions, tessellate,
-    tessellate_part,
+    Mesh, MeshFile, MeshFileError, Sphere, UniquePositions, tessellate, tessellate_part,
 };
-use crate::scene::{Falloff, Light, Material, Object, Scene, SceneError, SceneWarning, Shape};
+use crate::scene::{
+    Falloff, Light, Material, MaterialSource, Object, Scene, SceneError, SceneWarning, Shape,
+};
 
 /// Most triangles a world may hold. Memory follows the triangle count: at this cap a render
 /// peaks at about 2.3 GB (the ray tracer on a flat-shaded mesh, the worst case; the README
@@ -109,18 +110,21 @@ pub struct WorldReport {
     pub sources: Vec<WorldObjectSource>,
     /// Skipped parts of model files, in scene order.
     pub warnings: Vec<SceneWarning>,
-    /// Every model file read, and the glTF buffer files beside them, in scene order.
+    /// Every model file read, and the files beside them it read (glTF buffers, MTL libraries),
+    /// in scene order.
     pub inputs: Vec<PathBuf>,
 }
 
-/// The material one part of a mesh object is drawn with. A mesh object whose own material is
-/// the default one keeps the file's material (or the default, for a part that has none); any
-/// other material set on the object replaces the file's on every part.
+/// The material one part of a mesh object is drawn with: with `materials = "file"`, the file's
+/// material for the part (or the object's, for a part that has none); with `"object"`, the
+/// object's own.
 fn part_material(object: &Object, from_file: Option<Material>) -> Material {
-    if object.material == Material::default() {
-        from_file.unwrap_or(object.material)
-    } else {
-        object.material
+    match object.shape {
+        Shape::Mesh {
+            materials: MaterialSource::File,
+            ..
+        } => from_file.unwrap_or(object.material),
+        _ => object.material,
     }
 }
 
@@ -164,9 +168,7 @@ impl World {
                         error => SceneError::Model { index, error },
                     })?;
                     inputs.push(full.clone());
-                    if let MeshFile::Gltf(gltf) = model.as_ref() {
-                        inputs.extend(gltf.buffer_files.iter().cloned());
-                    }
+                    inputs.extend(model.companion_files().iter().cloned());
                     warnings.extend(model.warnings().iter().map(|warning| SceneWarning {
                         index,
                         path: full.clone(),
@@ -201,35 +203,24 @@ impl World {
             .zip(models.par_iter())
             .enumerate()
             .map(|(index, (object, model))| match model.as_deref() {
-                Some(MeshFile::Gltf(model)) => {
+                Some(model) => {
                     let (lo, hi) = model.bounds();
                     let centre = (lo + hi) * 0.5;
                     model
-                        .parts
+                        .parts()
                         .par_iter()
                         .map(|part| {
-                            let mesh = tessellate_part(object, &part.geometry, centre);
+                            let mesh = tessellate_part(object, part.geometry, centre);
                             (
                                 WorldObject::new(mesh, part_material(object, part.material)),
                                 WorldObjectSource {
                                     object: index,
-                                    part: Some(part.label.clone()),
+                                    part: part.label.map(str::to_string),
                                 },
                             )
                         })
                         .collect()
                 }
-                Some(
-                    MeshFile::Obj(geometry)
-                    | MeshFile::Stl(StlModel { geometry, .. })
-                    | MeshFile::Ply(PlyModel { geometry, .. }),
-                ) => vec![(
-                    WorldObject::new(tessellate(object, Some(geometry)), object.material),
-                    WorldObjectSource {
-                        object: index,
-                        part: None,
-                    },
-                )],
                 None => vec![(
                     WorldObject::new(tessellate(object, None), object.material),
                     WorldObjectSource {
