@@ -8,6 +8,7 @@ use std::time::SystemTime;
 
 use rayon::prelude::*;
 
+use crate::mesh::texture::Appearance;
 use crate::mesh::{
     Mesh, MeshFile, MeshFileError, Sphere, UniquePositions, tessellate, tessellate_part,
 };
@@ -27,6 +28,9 @@ pub struct WorldObject {
     pub mesh: Mesh,
     /// Surface material.
     pub material: Material,
+    /// Texture and alpha cut-out beside the material (plain for primitives and untextured
+    /// parts). A texture is drawn only where the mesh has texture coordinates.
+    pub appearance: Appearance,
     /// Sphere enclosing the mesh: the first cull of the ray tracer.
     pub bounds: Sphere,
     /// The mesh's axis-aligned bounds (min, max), world units; `None` for an empty mesh. Kept
@@ -41,14 +45,26 @@ pub struct WorldObject {
 impl WorldObject {
     /// An object of `mesh` and `material`, with its bounds and distinct positions.
     pub fn new(mesh: Mesh, material: Material) -> WorldObject {
+        WorldObject::with_appearance(mesh, material, Appearance::plain())
+    }
+
+    /// An object of `mesh`, `material` and `appearance`, with its bounds and distinct
+    /// positions.
+    pub fn with_appearance(mesh: Mesh, material: Material, appearance: Appearance) -> WorldObject {
         let extent = mesh.bounds();
         WorldObject {
+            appearance,
             bounds: mesh.bounding_sphere(extent),
             extent,
             unique: UniquePositions::of(&mesh),
             mesh,
             material,
         }
+    }
+
+    /// Whether the object is drawn with a texture (it has one and texture coordinates).
+    pub fn is_textured(&self) -> bool {
+        self.appearance.base_color.is_some() && self.mesh.uvs.is_some()
     }
 }
 

@@ -1,6 +1,7 @@
 //! Face-list meshes: indexed triangles with per-vertex normals, and the shapes that make them.
 
 mod byte_source;
+mod corner_uvs;
 mod cuboid;
 mod face_list;
 mod geometry;
@@ -22,9 +23,11 @@ mod prism;
 mod srgb;
 pub mod stl;
 mod tessellate;
+pub mod texture;
 mod unique_positions;
 mod weld;
 
+pub use corner_uvs::with_corner_uvs;
 pub use cuboid::cuboid;
 pub use face_list::{Mesh, Sphere};
 pub use geometry::ModelGeometry;
