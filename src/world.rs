@@ -8,9 +8,10 @@ use std::time::SystemTime;
 
 use rayon::prelude::*;
 
-use crate::mesh::texture::Appearance;
+use crate::mesh::texture::{Appearance, Sampler, TextureBinding};
 use crate::mesh::{
-    Mesh, MeshFile, MeshFileError, Sphere, UniquePositions, tessellate, tessellate_part,
+    Mesh, MeshFile, MeshFileError, ModelPart, Sphere, UniquePositions, tessellate, tessellate_part,
+    with_corner_uvs,
 };
 use crate::scene::{
     Falloff, Light, Material, MaterialSource, Object, Scene, SceneError, SceneWarning, Shape,
@@ -144,6 +145,32 @@ fn part_material(object: &Object, from_file: Option<Material>) -> Material {
     }
 }
 
+/// The texture one part of a mesh object is drawn with, and its mesh with texture coordinates:
+/// the file's texture when the object uses the file's materials and the part has coordinates
+/// everywhere; otherwise plain, and the mesh as it is.
+fn part_appearance(object: &Object, part: &ModelPart<'_>, mesh: Mesh) -> (Mesh, Appearance) {
+    let from_file = matches!(
+        object.shape,
+        Shape::Mesh {
+            materials: MaterialSource::File,
+            ..
+        }
+    );
+    match (part.texture, &part.geometry.corner_uvs, from_file) {
+        (Some((_, texture)), Some(uvs), true) => (
+            with_corner_uvs(mesh, uvs),
+            Appearance {
+                base_color: Some(TextureBinding {
+                    texture: texture.clone(),
+                    sampler: Sampler::default(),
+                }),
+                ..Appearance::plain()
+            },
+        ),
+        _ => (mesh, Appearance::plain()),
+    }
+}
+
 impl World {
     /// Tessellates `scene`; model paths are relative to `base_dir` (the scene file's directory).
     pub fn build(scene: &Scene, base_dir: &Path) -> Result<World, SceneError> {
@@ -227,8 +254,13 @@ impl World {
                         .par_iter()
                         .map(|part| {
                             let mesh = tessellate_part(object, part.geometry, centre);
+                            let (mesh, appearance) = part_appearance(object, part, mesh);
                             (
-                                WorldObject::new(mesh, part_material(object, part.material)),
+                                WorldObject::with_appearance(
+                                    mesh,
+                                    part_material(object, part.material),
+                                    appearance,
+                                ),
                                 WorldObjectSource {
                                     object: index,
                                     part: part.label.map(str::to_string),

@@ -77,6 +77,10 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
         for (k, (built, label)) in parts.iter().enumerate() {
             if let Some(label) = label {
                 let texture = file_parts.get(k).and_then(|p| p.texture);
+                let texture = texture.map(|(name, t)| {
+                    let (w, h) = t.size();
+                    format!("  texture {} {w}×{h}", Escaped(name))
+                });
                 outln!(
                     "        {}: {} triangles  colour {}{}{}",
                     Escaped(label),
@@ -87,7 +91,7 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
                     } else {
                         ""
                     },
-                    texture.map(describe_texture).unwrap_or_default()
+                    texture.unwrap_or_default()
                 );
             }
         }
@@ -174,21 +178,6 @@ fn measurements(m: &Measurements) -> String {
         text += &format!("  inconsistently wound edges {}", m.misoriented_edges);
     }
     text
-}
-
-/// `  texture wood.png 256×256`: the texture's file name and its size in pixels, read from its
-/// header (`size unknown` when it is not an image rastray reads).
-fn describe_texture(path: &Path) -> String {
-    let name = path.file_name().map_or_else(
-        || path.display().to_string(),
-        |n| n.to_string_lossy().into_owned(),
-    );
-    let size = image::ImageReader::open(path)
-        .and_then(|r| r.with_guessed_format())
-        .ok()
-        .and_then(|r| r.into_dimensions().ok())
-        .map_or("size unknown".into(), |(w, h)| format!("{w}×{h}"));
-    format!("  texture {} {size}", Escaped(&name))
 }
 
 fn fmt_vec(v: glam::Vec3) -> String {

@@ -2,9 +2,11 @@
 //! names, or else the one its content shows.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use glam::Vec3;
 
+use super::texture::Texture;
 use crate::scene::Material;
 
 use super::geometry::ModelGeometry;
@@ -83,7 +85,7 @@ impl MeshFile {
                     label: p.label.as_deref(),
                     geometry: &p.geometry,
                     material: p.material,
-                    texture: p.texture.as_deref(),
+                    texture: p.texture.as_ref().map(|(name, t)| (name.as_str(), t)),
                 })
                 .collect(),
             MeshFile::Gltf(model) => model
@@ -172,6 +174,6 @@ pub struct ModelPart<'a> {
     pub geometry: &'a ModelGeometry,
     /// The file's material for the part, mapped to Phong; `None` when it gives none.
     pub material: Option<Material>,
-    /// The part's colour texture, resolved inside the model's folder.
-    pub texture: Option<&'a Path>,
+    /// The part's colour texture: its name as the file gives it, and the decoded image.
+    pub texture: Option<(&'a str, &'a Arc<Texture>)>,
 }

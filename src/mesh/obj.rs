@@ -272,24 +272,26 @@ impl Statements {
                 .next()
                 .and_then(|v| v.parse::<i64>().ok())
                 .ok_or(ObjProblem::Malformed(CORNER_FORMS))?;
-            let mut index = |count: usize, lacks: &'static str| match parts.next() {
+            // An index as written, resolved; `None` when absent, `Some(NONE)` when it names
+            // nothing read so far.
+            let mut index = |count: usize| match parts.next() {
                 Some("") | None => Ok(None),
-                Some(n) => {
-                    let n = n
-                        .parse::<i64>()
-                        .map_err(|_| ObjProblem::Malformed(CORNER_FORMS))?;
-                    let n = resolve(n, count);
-                    if n as usize >= count {
-                        return Err(ObjProblem::Malformed(lacks));
-                    }
-                    Ok(Some(n))
-                }
+                Some(n) => n
+                    .parse::<i64>()
+                    .map(|n| {
+                        Some(resolve(n, count)).map(|i| if i as usize >= count { NONE } else { i })
+                    })
+                    .map_err(|_| ObjProblem::Malformed(CORNER_FORMS)),
             };
-            let uv = index(
-                self.uvs.len(),
-                "a face names a texture coordinate the file lacks",
-            )?;
-            let normal = index(self.normals.len(), "a face names a normal the file lacks")?;
+            // A texture coordinate the file lacks leaves the model without coordinates, as
+            // before rastray read them: such files loaded then and still do.
+            let uv = index(self.uvs.len())?.filter(|&t| t != NONE);
+            let normal = index(self.normals.len())?;
+            if normal == Some(NONE) {
+                return Err(ObjProblem::Malformed(
+                    "a face names a normal the file lacks",
+                ));
+            }
             let vertex = resolve(vertex, self.positions.len());
             self.missing_vertex |= vertex == NONE;
             self.corners.push(Corner { vertex, uv, normal });

@@ -5,6 +5,7 @@
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use super::geometry::ModelGeometry;
 use super::gltf::ImportWarning;
@@ -12,6 +13,7 @@ use super::mtl::{MtlMaterial, parse_mtl};
 use super::mtl_phong::phong_from_mtl;
 use super::obj::{ObjRead, read_obj};
 use super::obj_error::{ObjError, ObjProblem};
+use super::texture::{Texture, load_texture};
 use crate::model_folder::{ModelFolder, ReferenceKind};
 use crate::scene::Material;
 
@@ -30,9 +32,9 @@ pub struct ObjPart {
     pub material_name: Option<String>,
     /// The MTL material mapped to Phong; `None` when the faces have none (or it is undefined).
     pub material: Option<Material>,
-    /// The material's `map_Kd` texture, resolved inside the model's folder; `None` when it has
-    /// none or it could not be found.
-    pub texture: Option<PathBuf>,
+    /// The material's `map_Kd` texture as the MTL names it, and decoded; `None` when it has none
+    /// or it could not be read.
+    pub texture: Option<(String, Arc<Texture>)>,
 }
 
 /// An OBJ file as rastray draws it.
@@ -75,13 +77,14 @@ pub fn load_obj_model(path: &Path) -> Result<ObjModel, ObjError> {
     let whole = groups.len() == 1;
     let mut parts = Vec::with_capacity(groups.len());
     let mut geometry = Some(geometry);
+    let mut textures = HashMap::new();
     for (slot, triangles) in groups {
         let name = slot.map(|m| material_names[m as usize].clone());
         let mtl = name.as_ref().and_then(|n| library.get(n.as_str()));
         if let (Some(name), None) = (&name, mtl) {
             warnings.push(ImportWarning::UnknownMaterial { name: name.clone() });
         }
-        let texture = mtl.and_then(|m| texture_of(m, &folder, &mut warnings));
+        let texture = mtl.and_then(|m| texture_of(m, &folder, &mut textures, &mut warnings));
         let part_geometry = match (&geometry, whole) {
             (Some(_), true) => geometry.take().unwrap_or_default(),
             (Some(all), false) => all.subset(&triangles),
@@ -159,33 +162,27 @@ fn library_names<'a>(text: &'a str, folder: &ModelFolder) -> Vec<&'a str> {
     }
 }
 
-/// The resolved `map_Kd` of `material`, or `None` with a warning when it cannot be read.
+/// The `map_Kd` of `material`, read inside `folder` once per name (`loaded` keeps what was
+/// read), or `None` with a warning when it cannot be read.
 fn texture_of(
     material: &MtlMaterial,
     folder: &ModelFolder,
+    loaded: &mut HashMap<String, Option<Arc<Texture>>>,
     warnings: &mut Vec<ImportWarning>,
-) -> Option<PathBuf> {
+) -> Option<(String, Arc<Texture>)> {
     let reference = material.diffuse_map.as_ref()?;
-    let found = folder
-        .resolve(reference, ReferenceKind::Path)
-        .and_then(|path| match std::fs::metadata(&path) {
-            Ok(meta) if meta.is_file() => Ok(path),
-            _ => Err(crate::model_folder::ReferenceError::Unreadable(format!(
-                "{}: not a regular file",
-                path.display()
-            ))),
-        });
-    match found {
-        Ok(path) => Some(path),
-        Err(error) => {
-            warnings.push(ImportWarning::TextureNotRead {
-                material: material.name.clone(),
-                reference: reference.clone(),
-                reason: error.to_string(),
-            });
-            None
-        }
-    }
+    let texture = loaded.entry(reference.clone()).or_insert_with(|| {
+        load_texture(folder, reference, ReferenceKind::Path)
+            .map_err(|error| {
+                warnings.push(ImportWarning::TextureNotRead {
+                    material: material.name.clone(),
+                    reference: reference.clone(),
+                    reason: error.to_string(),
+                })
+            })
+            .ok()
+    });
+    Some((reference.clone(), texture.clone()?))
 }
 
 /// The triangles of each material, in the order materials are first used: one group of all
