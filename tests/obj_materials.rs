@@ -172,7 +172,10 @@ fn a_scene_without_the_key_means_what_it_meant_and_the_key_round_trips() {
     assert_eq!(source(&explicit), MaterialSource::File);
     let saved = rastray::scene::to_toml_string(&explicit);
     assert!(saved.contains("materials = \"file\""), "{saved}");
-    assert_eq!(rastray::scene::from_toml_str(&saved, Path::new("s.toml")).unwrap(), explicit);
+    assert_eq!(
+        rastray::scene::from_toml_str(&saved, Path::new("s.toml")).unwrap(),
+        explicit
+    );
     let error = rastray::scene::from_toml_str(
         "[[object]]\ntype = \"box\"\nsize = [1.0, 1.0, 1.0]\nmaterials = \"file\"\n",
         Path::new("s.toml"),
