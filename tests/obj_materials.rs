@@ -377,3 +377,67 @@ fn info_measures_volume_and_closure() {
     assert!(line.contains("open (160 boundary edges)"), "{line}");
     assert!(!line.contains("volume"), "{line}");
 }
+
+/// The texel of `texture` (level 0) under `uv` ((0, 0) the image's top-left), nearest.
+fn texel_at(texture: &rastray::mesh::texture::Texture, uv: Vec2) -> Vec3 {
+    let (w, h) = texture.size();
+    let x = ((uv.x * w as f32) as u32).min(w - 1);
+    let y = ((uv.y * h as f32) as u32).min(h - 1);
+    let [r, g, b, _] = texture.levels[0].texel(x, y);
+    Vec3::new(r, g, b)
+}
+
+#[test]
+fn blenders_obj_and_mtl_load_with_their_materials_and_an_upright_texture() {
+    // Written by tests/data/make_blender_mtl.py with Blender 3.4.1's OBJ exporter.
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/obj_mtl");
+    let cube = load_obj_model(&data.join("two_materials.obj")).expect("cube");
+    assert_eq!(cube.warnings, []);
+    let summary: Vec<_> = cube
+        .parts
+        .iter()
+        .map(|p| (p.material_name.clone().unwrap(), p.geometry.triangles.len()))
+        .collect();
+    assert_eq!(
+        summary,
+        [("Red_Paint".to_string(), 2), ("Blue".to_string(), 10)]
+    );
+    let red = cube.parts[0].material.unwrap();
+    assert_eq!(red.color, Vec3::X);
+    assert_eq!((red.specular, red.shininess), (0.5, 250.0));
+    let model = MeshFile::Obj(cube);
+    let parts: Vec<_> = model
+        .parts()
+        .iter()
+        .map(|p| (&p.geometry.positions[..], &p.geometry.triangles[..]))
+        .collect();
+    let m = rastray::mesh::measure(&parts);
+    assert_eq!(m.closure(), "closed");
+    assert!((m.volume.unwrap() - 8.0).abs() < 1e-6, "{m:?}");
+
+    // The quad: the texture's name holds a space; each corner's coordinates, stored with the
+    // image's top-left as origin, land on the image's texel at that corner of the picture.
+    let quad = load_obj_model(&data.join("textured_quad.obj")).expect("quad");
+    assert_eq!(quad.warnings, []);
+    let part = &quad.parts[0];
+    assert_eq!(
+        part.material.unwrap().color,
+        Vec3::ONE,
+        "no Kd: the texture alone"
+    );
+    let (name, texture) = part.texture.as_ref().expect("texture");
+    assert_eq!(
+        (name.as_str(), texture.size()),
+        ("textures/letter f.png", (16, 16))
+    );
+    let uvs = part.geometry.corner_uvs.as_ref().expect("uvs");
+    for (triangle, corners) in part.geometry.triangles.iter().zip(uvs) {
+        for (&i, &uv) in triangle.iter().zip(corners) {
+            let p = part.geometry.positions[i as usize];
+            // Blender painted red along x and green along y from the bottom-left.
+            let expected = Vec3::new((p.x > 0.0) as u8 as f32, (p.y > 0.0) as u8 as f32, 0.0);
+            let got = texel_at(texture, uv);
+            assert!((got - expected).abs().max_element() < 1e-3, "{p}: {got}");
+        }
+    }
+}
