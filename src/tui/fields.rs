@@ -469,4 +469,31 @@ mod tests {
             None
         );
     }
+
+    #[test]
+    fn a_meshs_materials_toggle_between_file_and_object_and_take_a_typed_name() {
+        let mut scene = default_scene();
+        scene.objects.push(Object::new(Shape::new(
+            ShapeKind::Mesh,
+            glam::Vec3::ZERO,
+            "chair.obj".into(),
+        )));
+        let item = Item::Object(scene.objects.len() - 1);
+        let source = |scene: &Scene| Part::of(scene, item).unwrap().value(Key::Materials);
+        assert_eq!(source(&scene), Some(Value::Text("file".into())));
+        let toggled = stepped(&scene, item, Key::Materials, 1).unwrap();
+        assert_eq!(source(&toggled), Some(Value::Text("object".into())));
+        let back = stepped(&toggled, item, Key::Materials, -1).unwrap();
+        assert_eq!(source(&back), Some(Value::Text("file".into())));
+        let typed_in = typed(&scene, item, Key::Materials, " Object ").unwrap();
+        assert_eq!(source(&typed_in), Some(Value::Text("object".into())));
+        assert!(
+            typed(&scene, item, Key::Materials, "mtl")
+                .unwrap_err()
+                .contains("not file or object")
+        );
+        // Only meshes have the choice.
+        let part = Part::of(&scene, Item::Object(0)).unwrap();
+        assert!(!part.keys().contains(&Key::Materials));
+    }
 }
