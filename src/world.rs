@@ -8,11 +8,14 @@ use std::time::SystemTime;
 
 use rayon::prelude::*;
 
+use crate::mesh::texture::{Appearance, Sampler, TextureBinding};
 use crate::mesh::{
-    Mesh, MeshFile, MeshFileError, PlyModel, Sphere, StlModel, UniquePositions, tessellate,
-    tessellate_part,
+    Mesh, MeshFile, MeshFileError, ModelPart, Sphere, UniquePositions, tessellate, tessellate_part,
+    with_corner_uvs,
 };
-use crate::scene::{Falloff, Light, Material, Object, Scene, SceneError, SceneWarning, Shape};
+use crate::scene::{
+    Falloff, Light, Material, MaterialSource, Object, Scene, SceneError, SceneWarning, Shape,
+};
 
 /// Most triangles a world may hold. Memory follows the triangle count: at this cap a render
 /// peaks at about 2.3 GB (the ray tracer on a flat-shaded mesh, the worst case; the README
@@ -26,6 +29,9 @@ pub struct WorldObject {
     pub mesh: Mesh,
     /// Surface material.
     pub material: Material,
+    /// Texture and alpha cut-out beside the material (plain for primitives and untextured
+    /// parts). A texture is drawn only where the mesh has texture coordinates.
+    pub appearance: Appearance,
     /// Sphere enclosing the mesh: the first cull of the ray tracer.
     pub bounds: Sphere,
     /// The mesh's axis-aligned bounds (min, max), world units; `None` for an empty mesh. Kept
@@ -43,8 +49,15 @@ pub struct WorldObject {
 impl WorldObject {
     /// An object of `mesh` and `material`, with its bounds and distinct positions.
     pub fn new(mesh: Mesh, material: Material) -> WorldObject {
+        WorldObject::with_appearance(mesh, material, Appearance::plain())
+    }
+
+    /// An object of `mesh`, `material` and `appearance`, with its bounds and distinct
+    /// positions.
+    pub fn with_appearance(mesh: Mesh, material: Material, appearance: Appearance) -> WorldObject {
         let extent = mesh.bounds();
         WorldObject {
+            appearance,
             bounds: mesh.bounding_sphere(extent),
             extent,
             unique: UniquePositions::of(&mesh),
@@ -63,6 +76,11 @@ impl WorldObject {
             .filter(|uvs| uvs.len() == self.mesh.triangles.len())
             .cloned();
         self
+    }
+
+    /// Whether the object is drawn with a texture (it has one and texture coordinates).
+    pub fn is_textured(&self) -> bool {
+        self.appearance.base_color.is_some() && self.mesh.uvs.is_some()
     }
 }
 
@@ -124,18 +142,47 @@ pub struct WorldReport {
     pub sources: Vec<WorldObjectSource>,
     /// Skipped parts of model files, in scene order.
     pub warnings: Vec<SceneWarning>,
-    /// Every model file read, and the glTF buffer files beside them, in scene order.
+    /// Every model file read, and the files beside them it read (glTF buffers, MTL libraries),
+    /// in scene order.
     pub inputs: Vec<PathBuf>,
 }
 
-/// The material one part of a mesh object is drawn with. A mesh object whose own material is
-/// the default one keeps the file's material (or the default, for a part that has none); any
-/// other material set on the object replaces the file's on every part.
+/// The material one part of a mesh object is drawn with: with `materials = "file"`, the file's
+/// material for the part (or the object's, for a part that has none); with `"object"`, the
+/// object's own.
 fn part_material(object: &Object, from_file: Option<Material>) -> Material {
-    if object.material == Material::default() {
-        from_file.unwrap_or(object.material)
-    } else {
-        object.material
+    match object.shape {
+        Shape::Mesh {
+            materials: MaterialSource::File,
+            ..
+        } => from_file.unwrap_or(object.material),
+        _ => object.material,
+    }
+}
+
+/// The texture one part of a mesh object is drawn with, and its mesh with texture coordinates:
+/// the file's texture when the object uses the file's materials and the part has coordinates
+/// everywhere; otherwise plain, and the mesh as it is.
+fn part_appearance(object: &Object, part: &ModelPart<'_>, mesh: Mesh) -> (Mesh, Appearance) {
+    let from_file = matches!(
+        object.shape,
+        Shape::Mesh {
+            materials: MaterialSource::File,
+            ..
+        }
+    );
+    match (part.texture, &part.geometry.corner_uvs, from_file) {
+        (Some((_, texture)), Some(uvs), true) => (
+            with_corner_uvs(mesh, uvs),
+            Appearance {
+                base_color: Some(TextureBinding {
+                    texture: texture.clone(),
+                    sampler: Sampler::default(),
+                }),
+                ..Appearance::plain()
+            },
+        ),
+        _ => (mesh, Appearance::plain()),
     }
 }
 
@@ -179,9 +226,7 @@ impl World {
                         error => SceneError::Model { index, error },
                     })?;
                     inputs.push(full.clone());
-                    if let MeshFile::Gltf(gltf) = model.as_ref() {
-                        inputs.extend(gltf.buffer_files.iter().cloned());
-                    }
+                    inputs.extend(model.companion_files().iter().cloned());
                     warnings.extend(model.warnings().iter().map(|warning| SceneWarning {
                         index,
                         path: full.clone(),
@@ -216,37 +261,30 @@ impl World {
             .zip(models.par_iter())
             .enumerate()
             .map(|(index, (object, model))| match model.as_deref() {
-                Some(MeshFile::Gltf(model)) => {
+                Some(model) => {
                     let (lo, hi) = model.bounds();
                     let centre = (lo + hi) * 0.5;
                     model
-                        .parts
+                        .parts()
                         .par_iter()
                         .map(|part| {
-                            let mesh = tessellate_part(object, &part.geometry, centre);
+                            let mesh = tessellate_part(object, part.geometry, centre);
+                            let (mesh, appearance) = part_appearance(object, part, mesh);
                             (
-                                WorldObject::new(mesh, part_material(object, part.material))
-                                    .with_uvs_of(&part.geometry),
+                                WorldObject::with_appearance(
+                                    mesh,
+                                    part_material(object, part.material),
+                                    appearance,
+                                )
+                                .with_uvs_of(part.geometry),
                                 WorldObjectSource {
                                     object: index,
-                                    part: Some(part.label.clone()),
+                                    part: part.label.map(str::to_string),
                                 },
                             )
                         })
                         .collect()
                 }
-                Some(
-                    MeshFile::Obj(geometry)
-                    | MeshFile::Stl(StlModel { geometry, .. })
-                    | MeshFile::Ply(PlyModel { geometry, .. }),
-                ) => vec![(
-                    WorldObject::new(tessellate(object, Some(geometry)), object.material)
-                        .with_uvs_of(geometry),
-                    WorldObjectSource {
-                        object: index,
-                        part: None,
-                    },
-                )],
                 None => vec![(
                     WorldObject::new(tessellate(object, None), object.material),
                     WorldObjectSource {

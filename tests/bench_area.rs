@@ -41,6 +41,7 @@ fn quad_world(lo: (f32, f32), hi: (f32, f32), z: f32) -> World {
         positions,
         triangles: vec![[0, 1, 2], [0, 2, 3]],
         colors: None,
+        uvs: None,
         flat: false,
     };
     world_of(vec![WorldObject::new(mesh, Material::default())])
@@ -101,6 +102,7 @@ fn a_face_behind_the_eye_counts_nothing_and_one_through_it_is_clipped() {
         normals: vec![Vec3::Y; 4],
         triangles: vec![[0, 1, 2], [0, 2, 3]],
         colors: None,
+        uvs: None,
         flat: false,
     };
     let floor = world_of(vec![WorldObject::new(mesh, Material::default())]);

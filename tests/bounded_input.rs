@@ -161,6 +161,7 @@ fn obj_vertices_keep_to_the_scene_coordinate_limits() {
         position: glam::Vec3::ZERO,
         scale: 1.0,
         up: Default::default(),
+        materials: rastray::scene::MaterialSource::File,
     });
     let mesh = rastray::mesh::tessellate(&object, Some(&model));
     let area = mesh.surface_area();

@@ -235,6 +235,7 @@ proptest! {
             position: glam::Vec3::ZERO,
             scale: 1.0,
             up: Default::default(),
+            materials: rastray::scene::MaterialSource::File,
         });
         for part in &model.parts {
             let g = &part.geometry;

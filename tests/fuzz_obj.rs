@@ -157,6 +157,7 @@ proptest! {
                     position: glam::Vec3::ZERO,
                     scale: 1.0,
                     up: Default::default(),
+                    materials: rastray::scene::MaterialSource::File,
                 });
                 let mesh = tessellate(&object, Some(&model));
                 prop_assert_eq!(mesh.triangle_count(), model.triangles.len());

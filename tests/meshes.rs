@@ -168,6 +168,7 @@ fn obj_polygons_are_triangulated_and_missing_normals_computed() {
         position: Vec3::ZERO,
         scale: 1.0,
         up: Default::default(),
+        materials: rastray::scene::MaterialSource::File,
     });
     let mesh = tessellate(&object, Some(&model));
     for n in &mesh.normals {

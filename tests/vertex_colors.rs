@@ -332,6 +332,7 @@ fn objects_without_colours_keep_their_bits_beside_one_with_colours() {
         normals: vec![Vec3::Z; 3],
         triangles: vec![[0, 1, 2]],
         colors: Some(vec![Vec3::X, Vec3::Y, Vec3::Z]),
+        uvs: None,
         flat: true,
     };
     coloured.objects.push(rastray::world::WorldObject::new(

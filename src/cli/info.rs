@@ -3,7 +3,7 @@
 use super::stdout::outln;
 use std::path::Path;
 
-use rastray::mesh::MeshFile;
+use rastray::mesh::{Measurements, MeshFile, measure};
 use rastray::scene::Shape;
 use rastray::text_escape::Escaped;
 use rastray::world::{MeshFileCache, WorldObject};
@@ -39,26 +39,50 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
             parts.push((built, source.part.as_deref()));
         }
     }
+    let mut measured = Vec::with_capacity(scene.objects.len());
     for (i, (object, parts)) in scene.objects.iter().zip(&parts_of).enumerate() {
         let triangles: usize = parts.iter().map(|(b, _)| b.mesh.triangle_count()).sum();
-        let area: f32 = parts.iter().map(|(b, _)| b.mesh.surface_area()).sum();
+        let meshes: Vec<_> = parts
+            .iter()
+            .map(|(b, _)| (&b.mesh.positions[..], &b.mesh.triangles[..]))
+            .collect();
+        let world_measure = measure(&meshes);
+        measured.push(world_measure);
+        // A mesh object is measured in its file's units (its scale divided out); the scene's
+        // total below is in world units.
+        let m = match &object.shape {
+            Shape::Mesh { scale, .. } => world_measure.unscaled(*scale),
+            _ => world_measure,
+        };
         outln!(
-            "  [{i}] {:<12} {:<12} {:>9} triangles  area {:>10.3}  centre {}",
+            "  [{i}] {:<12} {:<12} {:>9} triangles  area {:>10.3}  centre {}  {}{}",
             Escaped(object.label()),
             object.shape.kind().name(),
             triangles,
-            area,
-            fmt_vec(object.shape.center())
+            m.area,
+            fmt_vec(object.shape.center()),
+            m.closure(),
+            m.volume
+                .map(|v| format!("  volume {v:.3}"))
+                .unwrap_or_default()
         );
-        if let Shape::Mesh { path, up, .. } = &object.shape
-            && let Ok(model) = cache.get(&base.join(path))
-        {
-            outln!("        {}, up {up}", Escaped(&describe(&model)));
-        }
-        for (built, label) in parts {
+        outln!("        {}", measurements(&m));
+        let model = match &object.shape {
+            Shape::Mesh { path, up, .. } => cache.get(&base.join(path)).ok().inspect(|model| {
+                outln!("        {}, up {up}", Escaped(&describe(model)));
+            }),
+            _ => None,
+        };
+        let file_parts = model.as_ref().map(|m| m.parts()).unwrap_or_default();
+        for (k, (built, label)) in parts.iter().enumerate() {
             if let Some(label) = label {
+                let texture = file_parts.get(k).and_then(|p| p.texture);
+                let texture = texture.map(|(name, t)| {
+                    let (w, h) = t.size();
+                    format!("  texture {} {w}×{h}", Escaped(name))
+                });
                 outln!(
-                    "        {}: {} triangles  colour {}{}",
+                    "        {}: {} triangles  colour {}{}{}",
                     Escaped(label),
                     built.mesh.triangle_count(),
                     fmt_vec(built.material.color),
@@ -66,7 +90,8 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
                         "  vertex colours"
                     } else {
                         ""
-                    }
+                    },
+                    texture.unwrap_or_default()
                 );
             }
         }
@@ -91,11 +116,22 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
         ),
         None => outln!("bounds   (empty scene)"),
     }
+    let total = Measurements::total(&measured);
+    outln!(
+        "measure  (world units) area {:.3}  volume {}  {}",
+        total.area,
+        total
+            .volume
+            .map_or("(no closed object)".into(), |v| format!(
+                "{v:.3} (closed objects)"
+            )),
+        measurements(&total)
+    );
     Ok(())
 }
 
 /// What a model file is and holds beyond its triangles: `STL binary, no vertex colours, no
-/// texture coordinates`.
+/// texture coordinates`, and how many of its parts have a material of the file's.
 fn describe(model: &MeshFile) -> String {
     let geometries = model.geometries();
     let colours = geometries.iter().any(|g| g.colors.is_some());
@@ -113,10 +149,33 @@ fn describe(model: &MeshFile) -> String {
         has(colours, "vertex colours"),
         has(uvs, "texture coordinates")
     );
+    let materials = model
+        .parts()
+        .iter()
+        .filter(|p| p.material.is_some())
+        .count();
+    if materials > 0 {
+        text += &format!(", {materials} materials");
+    }
     if let MeshFile::Ply(ply) = model
         && let Some(texture) = &ply.texture
     {
         text += &format!(", texture {texture} (not drawn)");
+    }
+    text
+}
+
+/// Size and topology, as `size [1.000, 1.000, 1.000]  non-manifold edges 0  degenerate
+/// triangles 0`.
+fn measurements(m: &Measurements) -> String {
+    let mut text = format!(
+        "size {}  non-manifold edges {}  degenerate triangles {}",
+        fmt_vec(m.size()),
+        m.non_manifold_edges,
+        m.degenerate_triangles
+    );
+    if m.misoriented_edges > 0 {
+        text += &format!("  inconsistently wound edges {}", m.misoriented_edges);
     }
     text
 }

@@ -1,10 +1,11 @@
 //! The mesh representation every renderer reads.
 
-use glam::{Affine3A, Vec3};
+use glam::{Affine3A, Vec2, Vec3};
 
-/// Indexed triangles with one unit normal per vertex, and optionally one colour per vertex.
+/// Indexed triangles with one unit normal per vertex, and optionally one colour and one texture
+/// coordinate per vertex.
 ///
-/// Invariants: `normals.len() == positions.len()`, and so does `colors`' when present; every
+/// Invariants: `normals.len() == positions.len()`, and so do `colors`' and `uvs`' when present; every
 /// index is `< positions.len()`; triangles of closed shapes wind counter-clockwise seen from
 /// outside.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -19,6 +20,9 @@ pub struct Mesh {
     /// vertices: the albedo at a point is the material colour times the colour interpolated
     /// there. `None` means white everywhere, and keeps the renderers on their paths without it.
     pub colors: Option<Vec<Vec3>>,
+    /// Texture coordinates of each vertex ((0, 0) the image's top-left corner, v downward), when
+    /// the mesh is textured. `None` keeps the renderers on their untextured paths.
+    pub uvs: Option<Vec<Vec2>>,
     /// Whether the mesh is flat-shaded: each triangle's three corners carry its face normal, so
     /// the normal at any point of a triangle is the triangle's own (the ray tracer then takes
     /// it from the triangle it hit rather than from `normals`).
@@ -111,23 +115,37 @@ impl Mesh {
     }
 
     /// Appends `other`'s vertices and triangles. When only one of the two has colours, the
-    /// other's vertices become white.
+    /// other's vertices become white; when only one has texture coordinates, the other's are 0.
     pub fn append(&mut self, other: &Mesh) {
         self.flat = other.flat && (self.flat || self.triangles.is_empty());
         let base = self.positions.len() as u32;
-        match (&mut self.colors, &other.colors) {
-            (Some(colors), Some(more)) => colors.extend_from_slice(more),
-            (Some(colors), None) => colors.resize(colors.len() + other.positions.len(), Vec3::ONE),
-            (None, Some(more)) => {
-                let mut colors = vec![Vec3::ONE; self.positions.len()];
-                colors.extend_from_slice(more);
-                self.colors = Some(colors);
-            }
-            (None, None) => {}
-        }
+        let (count, more) = (self.positions.len(), other.positions.len());
+        append_per_vertex(&mut self.colors, count, &other.colors, more, Vec3::ONE);
+        append_per_vertex(&mut self.uvs, count, &other.uvs, more, Vec2::ZERO);
         self.positions.extend_from_slice(&other.positions);
         self.normals.extend_from_slice(&other.normals);
         self.triangles
             .extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
+    }
+}
+
+/// Appends `more` (per-vertex values of `more_count` vertices, or none) to `values` (of `count`
+/// vertices, or none): a side without values counts as `fill` at each of its vertices.
+fn append_per_vertex<T: Copy>(
+    values: &mut Option<Vec<T>>,
+    count: usize,
+    more: &Option<Vec<T>>,
+    more_count: usize,
+    fill: T,
+) {
+    match (values.as_mut(), more) {
+        (Some(values), Some(more)) => values.extend_from_slice(more),
+        (Some(values), None) => values.resize(count + more_count, fill),
+        (None, Some(more)) => {
+            let mut filled = vec![fill; count];
+            filled.extend_from_slice(more);
+            *values = Some(filled);
+        }
+        (None, None) => {}
     }
 }

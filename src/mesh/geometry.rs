@@ -34,4 +34,39 @@ impl ModelGeometry {
             |(lo, hi), &p| (lo.min(p), hi.max(p)),
         )
     }
+
+    /// The triangles `chosen` (indices into `triangles`, in the order given) with the positions
+    /// they use renumbered in first-use order, and their normals, colours and UVs.
+    pub fn subset(&self, chosen: &[u32]) -> ModelGeometry {
+        let mut new_index = vec![u32::MAX; self.positions.len()];
+        let mut positions = Vec::new();
+        let mut colors = self.colors.as_ref().map(|_| Vec::new());
+        let triangles = chosen
+            .iter()
+            .map(|&t| {
+                self.triangles[t as usize].map(|i| {
+                    let slot = &mut new_index[i as usize];
+                    if *slot == u32::MAX {
+                        *slot = positions.len() as u32;
+                        positions.push(self.positions[i as usize]);
+                        if let (Some(out), Some(all)) = (&mut colors, &self.colors) {
+                            out.push(all[i as usize]);
+                        }
+                    }
+                    *slot
+                })
+            })
+            .collect();
+        let pick = |corners: &Vec<[Vec3; 3]>| chosen.iter().map(|&t| corners[t as usize]).collect();
+        ModelGeometry {
+            positions,
+            triangles,
+            corner_normals: self.corner_normals.as_ref().map(pick),
+            colors,
+            corner_uvs: self
+                .corner_uvs
+                .as_ref()
+                .map(|uvs| chosen.iter().map(|&t| uvs[t as usize]).collect()),
+        }
+    }
 }

@@ -2,22 +2,26 @@
 //! names, or else the one its content shows.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use glam::Vec3;
+
+use super::texture::Texture;
+use crate::scene::Material;
 
 use super::geometry::ModelGeometry;
 use super::gltf::{GltfError, GltfModel, ImportWarning, load_gltf};
 use super::model_format::{EXPECTED_MODEL, ModelFormat};
-use super::obj::load_obj;
 use super::obj_error::ObjError;
+use super::obj_model::{ObjModel, load_obj_model};
 use super::ply::{PlyError, PlyModel, load_ply};
 use super::stl::{StlError, StlModel, load_stl};
 
-/// A loaded model file: OBJ, STL or PLY (one geometry each) or glTF (one part per primitive
-/// instance).
+/// A loaded model file: STL or PLY (one geometry each), OBJ (one part per material) or glTF
+/// (one part per primitive instance).
 #[derive(Debug, Clone, PartialEq)]
 pub enum MeshFile {
-    Obj(ModelGeometry),
+    Obj(ObjModel),
     Gltf(GltfModel),
     Stl(StlModel),
     Ply(PlyModel),
@@ -58,7 +62,7 @@ impl MeshFile {
             error,
         })?;
         Ok(match format {
-            Some(ModelFormat::Obj) => MeshFile::Obj(load_obj(path)?),
+            Some(ModelFormat::Obj) => MeshFile::Obj(load_obj_model(path)?),
             Some(ModelFormat::Gltf | ModelFormat::Glb) => MeshFile::Gltf(load_gltf(path)?),
             Some(ModelFormat::Stl) => MeshFile::Stl(load_stl(path)?),
             Some(ModelFormat::Ply) => MeshFile::Ply(load_ply(path)?),
@@ -70,22 +74,44 @@ impl MeshFile {
         })
     }
 
-    /// The one geometry of an OBJ, STL or PLY file; `None` for glTF (see its parts).
-    pub fn geometry(&self) -> Option<&ModelGeometry> {
+    /// The parts the file is drawn as: one for STL and PLY, one per material for OBJ, one per
+    /// primitive instance for glTF; never empty.
+    pub fn parts(&self) -> Vec<ModelPart<'_>> {
         match self {
-            MeshFile::Obj(geometry) => Some(geometry),
-            MeshFile::Stl(model) => Some(&model.geometry),
-            MeshFile::Ply(model) => Some(&model.geometry),
-            MeshFile::Gltf(_) => None,
+            MeshFile::Obj(model) => model
+                .parts
+                .iter()
+                .map(|p| ModelPart {
+                    label: p.label.as_deref(),
+                    geometry: &p.geometry,
+                    material: p.material,
+                    texture: p.texture.as_ref().map(|(name, t)| (name.as_str(), t)),
+                })
+                .collect(),
+            MeshFile::Gltf(model) => model
+                .parts
+                .iter()
+                .map(|p| ModelPart {
+                    label: Some(&p.label),
+                    geometry: &p.geometry,
+                    material: p.material,
+                    texture: None,
+                })
+                .collect(),
+            MeshFile::Stl(StlModel { geometry, .. }) | MeshFile::Ply(PlyModel { geometry, .. }) => {
+                vec![ModelPart {
+                    label: None,
+                    geometry,
+                    material: None,
+                    texture: None,
+                }]
+            }
         }
     }
 
-    /// Every geometry of the file: one, or one per glTF part.
+    /// Every geometry of the file, one per part.
     pub fn geometries(&self) -> Vec<&ModelGeometry> {
-        match self {
-            MeshFile::Gltf(model) => model.parts.iter().map(|p| &p.geometry).collect(),
-            _ => self.geometry().into_iter().collect(),
-        }
+        self.parts().into_iter().map(|p| p.geometry).collect()
     }
 
     /// The file's format and how it is written: `OBJ`, `glTF`, `GLB`, `STL binary`,
@@ -111,23 +137,43 @@ impl MeshFile {
         self.geometries().iter().map(|g| g.triangles.len()).sum()
     }
 
-    /// Axis-aligned bounds (min, max) of the whole file, in its own space.
+    /// Axis-aligned bounds (min, max) of the whole file, in its own space; inverted (MAX, MIN)
+    /// when empty.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        match self {
-            MeshFile::Gltf(model) => model.bounds(),
-            _ => self
-                .geometry()
-                .map_or((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |g| {
-                    g.bounds()
-                }),
-        }
+        self.geometries().iter().map(|g| g.bounds()).fold(
+            (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+            |(a, b), (c, d)| (a.min(c), b.max(d)),
+        )
     }
 
-    /// What the loader skipped; only glTF files report anything.
+    /// What the loader skipped; glTF and OBJ files report it.
     pub fn warnings(&self) -> &[ImportWarning] {
         match self {
             MeshFile::Gltf(model) => &model.warnings,
+            MeshFile::Obj(model) => &model.warnings,
             _ => &[],
         }
     }
+
+    /// The files read beside the model (glTF buffers, MTL libraries), in the order named.
+    pub fn companion_files(&self) -> &[PathBuf] {
+        match self {
+            MeshFile::Gltf(model) => &model.buffer_files,
+            MeshFile::Obj(model) => &model.material_files,
+            _ => &[],
+        }
+    }
+}
+
+/// One part of a model file as the world draws it.
+#[derive(Debug, Clone, Copy)]
+pub struct ModelPart<'a> {
+    /// Which part, as `material "Wood"` or a glTF primitive's label; `None` for a file drawn
+    /// whole.
+    pub label: Option<&'a str>,
+    pub geometry: &'a ModelGeometry,
+    /// The file's material for the part, mapped to Phong; `None` when it gives none.
+    pub material: Option<Material>,
+    /// The part's colour texture: its name as the file gives it, and the decoded image.
+    pub texture: Option<(&'a str, &'a Arc<Texture>)>,
 }

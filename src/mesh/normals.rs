@@ -78,6 +78,7 @@ fn flat_normals(positions: &[Vec3], triangles: &[[u32; 3]], colors: Option<&[Vec
         normals: Vec::with_capacity(triangles.len() * 3),
         triangles: Vec::with_capacity(triangles.len()),
         colors: colors.map(|_| Vec::with_capacity(triangles.len() * 3)),
+        uvs: None,
         flat: true,
     };
     for tri in triangles {
@@ -144,6 +145,7 @@ fn smooth_normals(
         normals: Vec::with_capacity(positions.len()),
         triangles: Vec::with_capacity(triangles.len()),
         colors: colors.map(|_| Vec::with_capacity(positions.len())),
+        uvs: None,
         flat: false,
     };
     // The output vertices made for each welded vertex, as chains: `first_made[v]` is the first

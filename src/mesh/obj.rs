@@ -1,8 +1,10 @@
-//! OBJ import: the statements rastray draws (`v`, `vn`, `f`) read line by line as the file
-//! streams in, polygons fan-triangulated, every group merged into one face list. Nothing else
-//! of the file is kept, so loading takes about the memory of the result: 12 bytes a vertex and
-//! 12 a triangle (36 more a triangle when the file gives normals everywhere, 12 more a vertex
-//! when it colours every vertex).
+//! OBJ import: the statements rastray draws (`v`, `vt`, `vn`, `f`, and `usemtl` and `mtllib`
+//! for materials) read line by line as the file streams in, polygons fan-triangulated, every
+//! group merged into one face list that remembers which material each triangle uses. Nothing
+//! else of the file is kept, so loading takes about the memory of the result: 12 bytes a vertex
+//! and 12 a triangle (36 more a triangle when the file gives normals everywhere, 24 more when it
+//! gives texture coordinates everywhere, 12 more a vertex when it colours every vertex).
+//! [`super::obj_model`] turns the materials into parts.
 //!
 //! Vertex colours follow the common extension `v x y z r g b`: three numbers in 0..1 after the
 //! position, sRGB-encoded as image colours are (values outside 0..1 are clamped), decoded to
@@ -12,7 +14,7 @@
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use super::geometry::ModelGeometry;
 use super::normals::unit_or_zero;
@@ -21,16 +23,34 @@ use super::srgb::srgb_to_linear;
 use crate::input_file::{MAX_MODEL_BYTES, open_bounded, read_bounded};
 use crate::scene::limits::COORDINATE;
 
-/// An OBJ file's geometry: every group of the file merged into one face list.
-pub type ObjModel = ModelGeometry;
-
 /// What a model file is called in refusals.
 const MODEL_FILE: &str = "a model file";
 
 /// Reads the OBJ file at `path`: a regular file of at most [`MAX_MODEL_BYTES`]. Vertices must
 /// lie within the scene's coordinate limits. Errors name the file, and the line where there is
-/// one. Vertices no face uses are dropped.
-pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
+/// one. Vertices no face uses are dropped. Every face is kept, whatever its material.
+pub fn load_obj(path: &Path) -> Result<ModelGeometry, ObjError> {
+    read_obj(path).map(|read| read.geometry)
+}
+
+/// An OBJ file as read: its geometry, which material each triangle uses, and the material
+/// libraries it names.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjRead {
+    /// Every face of the file, welded as the file indexes them.
+    pub geometry: ModelGeometry,
+    /// The names `usemtl` gave, in the order first met.
+    pub material_names: Vec<String>,
+    /// Where each run of triangles starts and the material it uses (an index into
+    /// `material_names`, or `None` before any `usemtl`), ascending by start; empty when the file
+    /// never says `usemtl`.
+    pub material_runs: Vec<(u32, Option<u32>)>,
+    /// Each `mtllib` statement: its line and the rest of the line as written.
+    pub libraries: Vec<(usize, String)>,
+}
+
+/// As [`load_obj`], keeping what the file says of materials.
+pub fn read_obj(path: &Path) -> Result<ObjRead, ObjError> {
     let fail = |line, problem| ObjError {
         path: path.to_path_buf(),
         line,
@@ -41,16 +61,14 @@ pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
     let mut reader = BufReader::with_capacity(1 << 16, file);
     let mut statements = Statements::default();
     let mut line = Vec::new();
-    let mut number = 0;
     loop {
         line.clear();
         if reader.read_until(b'\n', &mut line).map_err(io)? == 0 {
             break;
         }
-        number += 1;
         statements
             .read(&line)
-            .map_err(|problem| fail(Some(number), problem))?;
+            .map_err(|problem| fail(Some(statements.line), problem))?;
     }
     if reader.get_ref().limit() == 0 {
         return Err(io(std::io::Error::new(
@@ -82,7 +100,15 @@ pub fn load_obj(path: &Path) -> Result<ObjModel, ObjError> {
     if statements.triangles.is_empty() {
         return Err(fail(None, ObjProblem::NoFaces));
     }
-    statements.finish().map_err(|problem| fail(None, problem))
+    let material_names = std::mem::take(&mut statements.material_names);
+    let material_runs = std::mem::take(&mut statements.material_runs);
+    let libraries = std::mem::take(&mut statements.libraries);
+    Ok(ObjRead {
+        geometry: statements.finish().map_err(|problem| fail(None, problem))?,
+        material_names,
+        material_runs,
+        libraries,
+    })
 }
 
 /// The geometry read so far.
@@ -100,22 +126,52 @@ struct Statements {
     normal_corners: Vec<[u32; 3]>,
     /// Whether some face corner has no normal.
     corner_without_normal: bool,
+    /// Texture coordinates (u, v) as `vt` statements give them (OBJ's origin: bottom-left).
+    uvs: Vec<Vec2>,
+    /// The texture coordinate index of each triangle corner, while every corner so far has one.
+    uv_corners: Vec<[u32; 3]>,
+    /// Whether some face corner has no texture coordinate.
+    corner_without_uv: bool,
+    /// The names `usemtl` gave, in the order first met, and their indices.
+    material_names: Vec<String>,
+    material_index: std::collections::HashMap<String, u32>,
+    /// Where each run of triangles of one material starts (see [`ObjRead::material_runs`]).
+    material_runs: Vec<(u32, Option<u32>)>,
+    /// The material of the faces read next: `None` before any `usemtl`.
+    material: Option<u32>,
+    /// The `mtllib` statements: line and the rest of the line.
+    libraries: Vec<(usize, String)>,
+    /// The number of the line read last, from 1.
+    line: usize,
     /// Whether a face named a vertex before the first (index 0, or negative too far back).
     missing_vertex: bool,
-    /// The corners of the face being read: vertex and normal indices, from 0.
-    corners: Vec<(u32, Option<u32>)>,
+    /// The corners of the face being read: vertex, texture coordinate and normal indices, from 0.
+    corners: Vec<Corner>,
 }
 
 /// An index that names nothing.
 const NONE: u32 = u32::MAX;
 
+/// One corner of a face: vertex, texture coordinate and normal indices, from 0.
+#[derive(Debug, Clone, Copy)]
+struct Corner {
+    vertex: u32,
+    uv: Option<u32>,
+    normal: Option<u32>,
+}
+
+/// What a malformed face corner should have been.
+const CORNER_FORMS: &str = "a face corner is `v`, `v/vt`, `v//vn` or `v/vt/vn`";
+
 impl Statements {
     /// Reads one line of the file.
     fn read(&mut self, line: &[u8]) -> Result<(), ObjProblem> {
+        self.line += 1;
         // A comment in another encoding is no obstacle; a number in one is no number.
         let line = String::from_utf8_lossy(line);
         let mut words = line.split_whitespace();
-        match words.next() {
+        let keyword = words.next();
+        match keyword {
             Some("v") => {
                 let p = three_numbers(&mut words).ok_or(ObjProblem::Malformed(
                     "a vertex is `v x y z`, three numbers",
@@ -144,12 +200,67 @@ impl Statements {
                 ))?;
                 self.normals.push(unit_or_zero(Vec3::from_array(n)));
             }
+            Some("vt") => {
+                let u = words.next().and_then(|w| w.parse::<f32>().ok());
+                // `vt u [v [w]]`: v defaults to 0.
+                let v = match words.next() {
+                    None => Some(0.0),
+                    Some(w) => w.parse::<f32>().ok(),
+                };
+                match (u, v) {
+                    (Some(u), Some(v)) if u.is_finite() && v.is_finite() => {
+                        self.uvs.push(Vec2::new(u, v));
+                    }
+                    _ => {
+                        return Err(ObjProblem::Malformed(
+                            "a texture coordinate is `vt u [v [w]]`, finite numbers",
+                        ));
+                    }
+                }
+            }
             Some("f") => self.face(words)?,
-            // Texture coordinates, groups, materials, smoothing groups, points and lines: not
-            // drawn.
+            Some(keyword @ ("usemtl" | "mtllib")) => {
+                // The name is the rest of the line: it may hold spaces.
+                let rest = line.trim_start()[keyword.len()..].trim();
+                if keyword == "mtllib" {
+                    if !rest.is_empty() {
+                        self.libraries.push((self.line, rest.to_string()));
+                    }
+                } else {
+                    self.use_material(rest);
+                }
+            }
+            // Groups, smoothing groups, points and lines: not drawn.
             _ => {}
         }
         Ok(())
+    }
+
+    /// Makes `name` the material of the faces that follow (`usemtl` with no name: none).
+    fn use_material(&mut self, name: &str) {
+        let material = (!name.is_empty()).then(|| {
+            let next = self.material_names.len() as u32;
+            *self
+                .material_index
+                .entry(name.to_string())
+                .or_insert_with(|| {
+                    self.material_names.push(name.to_string());
+                    next
+                })
+        });
+        if material == self.material {
+            return;
+        }
+        let start = self.triangles.len() as u32;
+        if self.material_runs.is_empty() && start > 0 {
+            self.material_runs.push((0, None));
+        }
+        match self.material_runs.last_mut() {
+            // A run with no triangles yet takes the new material.
+            Some(last) if last.0 == start => last.1 = material,
+            _ => self.material_runs.push((start, material)),
+        }
+        self.material = material;
     }
 
     /// Reads the corners of an `f` statement and fans them into triangles.
@@ -157,28 +268,33 @@ impl Statements {
         self.corners.clear();
         for word in words {
             let mut parts = word.split('/');
-            let vertex =
-                parts
-                    .next()
-                    .and_then(|v| v.parse::<i64>().ok())
-                    .ok_or(ObjProblem::Malformed(
-                        "a face corner is `v`, `v/vt`, `v//vn` or `v/vt/vn`",
-                    ))?;
-            let normal = match parts.nth(1) {
-                Some("") | None => None,
-                Some(n) => Some(n.parse::<i64>().map_err(|_| {
-                    ObjProblem::Malformed("a face corner is `v`, `v/vt`, `v//vn` or `v/vt/vn`")
-                })?),
+            let vertex = parts
+                .next()
+                .and_then(|v| v.parse::<i64>().ok())
+                .ok_or(ObjProblem::Malformed(CORNER_FORMS))?;
+            // An index as written, resolved; `None` when absent, `Some(NONE)` when it names
+            // nothing read so far.
+            let mut index = |count: usize| match parts.next() {
+                Some("") | None => Ok(None),
+                Some(n) => n
+                    .parse::<i64>()
+                    .map(|n| {
+                        Some(resolve(n, count)).map(|i| if i as usize >= count { NONE } else { i })
+                    })
+                    .map_err(|_| ObjProblem::Malformed(CORNER_FORMS)),
             };
-            let vertex = resolve(vertex, self.positions.len());
-            self.missing_vertex |= vertex == NONE;
-            let normal = normal.map(|n| resolve(n, self.normals.len()));
-            if normal.is_some_and(|n| n as usize >= self.normals.len()) {
+            // A texture coordinate the file lacks leaves the model without coordinates, as
+            // before rastray read them: such files loaded then and still do.
+            let uv = index(self.uvs.len())?.filter(|&t| t != NONE);
+            let normal = index(self.normals.len())?;
+            if normal == Some(NONE) {
                 return Err(ObjProblem::Malformed(
                     "a face names a normal the file lacks",
                 ));
             }
-            self.corners.push((vertex, normal));
+            let vertex = resolve(vertex, self.positions.len());
+            self.missing_vertex |= vertex == NONE;
+            self.corners.push(Corner { vertex, uv, normal });
         }
         // A point or a line: not drawn.
         if self.corners.len() < 3 {
@@ -190,11 +306,11 @@ impl Statements {
         if (self.triangles.len() + self.corners.len() - 2) as u64 > limit {
             return Err(ObjProblem::TooManyTriangles { limit });
         }
-        let (first, first_normal) = self.corners[0];
+        let first = self.corners[0];
         for pair in self.corners[1..].windows(2) {
-            let [(b, b_normal), (c, c_normal)] = [pair[0], pair[1]];
-            self.triangles.push([first, b, c]);
-            match (first_normal, b_normal, c_normal) {
+            let [b, c] = [pair[0], pair[1]];
+            self.triangles.push([first.vertex, b.vertex, c.vertex]);
+            match (first.normal, b.normal, c.normal) {
                 (Some(na), Some(nb), Some(nc)) if !self.corner_without_normal => {
                     self.normal_corners.push([na, nb, nc]);
                 }
@@ -203,12 +319,22 @@ impl Statements {
                     self.normal_corners = Vec::new();
                 }
             }
+            match (first.uv, b.uv, c.uv) {
+                (Some(ta), Some(tb), Some(tc)) if !self.corner_without_uv => {
+                    self.uv_corners.push([ta, tb, tc]);
+                }
+                _ => {
+                    self.corner_without_uv = true;
+                    self.uv_corners = Vec::new();
+                }
+            }
         }
         Ok(())
     }
 
     /// The geometry: unused vertices dropped, corner normals kept when every corner has a
-    /// finite, non-zero one.
+    /// finite, non-zero one, texture coordinates when every corner has one (stored as
+    /// (u, 1 − v): the image's top-left is the origin of [`ModelGeometry::corner_uvs`]).
     fn finish(self) -> Result<ModelGeometry, ObjProblem> {
         let mut triangles = self.triangles;
         // Renumber the vertices faces use, in file order.
@@ -250,12 +376,19 @@ impl Statements {
                 .all(|n| n.is_finite() && *n != Vec3::ZERO)
                 .then_some(corners)
         };
+        let corner_uvs = (!self.corner_without_uv && !self.uvs.is_empty()).then(|| {
+            let uvs = &self.uvs;
+            self.uv_corners
+                .iter()
+                .map(|t| t.map(|k| Vec2::new(uvs[k as usize].x, 1.0 - uvs[k as usize].y)))
+                .collect()
+        });
         Ok(ModelGeometry {
             positions,
             triangles,
             corner_normals,
             colors,
-            corner_uvs: None,
+            corner_uvs,
         })
     }
 }

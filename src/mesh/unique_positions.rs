@@ -116,6 +116,7 @@ mod tests {
             normals: vec![Vec3::Z; 4],
             triangles: vec![[0, 1, 2], [3, 2, 1]],
             colors: None,
+            uvs: None,
             flat: false,
         };
         let unique = UniquePositions::of(&mesh);

@@ -9,6 +9,7 @@ use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
 use super::material::Material;
+use super::material_source::MaterialSource;
 use super::up_axis::UpAxis;
 use super::vector::optional_vec3;
 
@@ -39,12 +40,14 @@ pub enum Shape {
     },
     /// A triangle mesh from a model file (OBJ, STL, PLY, glTF; path relative to the scene
     /// file). The file is turned so that its `up` axis becomes +Y, and the model's bounding-box
-    /// centre is placed at `position`, after scaling by `scale` > 0.
+    /// centre is placed at `position`, after scaling by `scale` > 0. `materials` says whether
+    /// the file's materials and textures or the object's own material draw it.
     Mesh {
         path: PathBuf,
         position: Vec3,
         scale: f32,
         up: UpAxis,
+        materials: MaterialSource,
     },
 }
 
@@ -145,6 +148,7 @@ impl Shape {
                 position: center,
                 scale: 1.0,
                 up: UpAxis::Y,
+                materials: MaterialSource::File,
             },
         }
     }
@@ -224,6 +228,8 @@ pub struct ObjectRecord {
     scale: Option<f32>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     up: Option<UpAxis>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    materials: Option<MaterialSource>,
     #[serde(
         default,
         deserialize_with = "optional_vec3",
@@ -268,6 +274,7 @@ impl TryFrom<ObjectRecord> for Object {
                 stray("position", r.position.is_some())?;
                 stray("scale", r.scale.is_some())?;
                 stray("up", r.up.is_some())?;
+                stray("materials", r.materials.is_some())?;
                 Shape::Icosahedron {
                     center: r.center.unwrap_or(Vec3::ZERO),
                     radius: r.radius.ok_or_else(|| required("radius"))?,
@@ -281,6 +288,7 @@ impl TryFrom<ObjectRecord> for Object {
                 stray("position", r.position.is_some())?;
                 stray("scale", r.scale.is_some())?;
                 stray("up", r.up.is_some())?;
+                stray("materials", r.materials.is_some())?;
                 let center = r.center.unwrap_or(Vec3::ZERO);
                 let size = r.size.ok_or_else(|| required("size"))?;
                 let segments = r.segments.unwrap_or(1);
@@ -309,6 +317,9 @@ impl TryFrom<ObjectRecord> for Object {
                     position: r.position.unwrap_or(Vec3::ZERO),
                     scale: r.scale.unwrap_or(1.0),
                     up: r.up.unwrap_or_default(),
+                    materials: r
+                        .materials
+                        .unwrap_or_else(|| MaterialSource::implied_by(&r.material)),
                 }
             }
         };
@@ -337,6 +348,7 @@ impl From<Object> for ObjectRecord {
             position: None,
             scale: None,
             up: None,
+            materials: None,
             rotation: (o.rotation != Vec3::ZERO).then_some(o.rotation),
             smooth: Some(o.smooth),
             material: o.material,
@@ -370,11 +382,13 @@ impl From<Object> for ObjectRecord {
                 position,
                 scale,
                 up,
+                materials,
             } => {
                 r.path = Some(path);
                 r.position = Some(position);
                 r.scale = Some(scale);
                 r.up = (up != UpAxis::default()).then_some(up);
+                r.materials = Some(materials);
             }
         }
         r

@@ -10,7 +10,7 @@ use glam::Vec3;
 use super::selection::Item;
 use super::text::clean;
 use crate::scene::limits::{self, CountLimits, Limits};
-use crate::scene::{Camera, Light, Object, Scene, Shape, UpAxis, validate};
+use crate::scene::{Camera, Light, MaterialSource, Object, Scene, Shape, UpAxis, validate};
 
 /// One component of a vector field.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -41,6 +41,8 @@ pub enum Key {
     Scale,
     /// The axis of a mesh's file that points up.
     Up,
+    /// Whether a mesh is drawn with its file's materials or the object's own.
+    Materials,
     Rotation(Axis),
     Color(Axis),
     Diffuse,
@@ -110,6 +112,7 @@ impl Key {
             Key::Path => "path".into(),
             Key::Scale => "scale".into(),
             Key::Up => "up".into(),
+            Key::Materials => "materials".into(),
             Key::Rotation(a) => xyz("rotation", a),
             Key::Color(a) => rgb("color", a),
             Key::Diffuse => "diffuse".into(),
@@ -146,7 +149,7 @@ impl Key {
             Key::Subdivisions => Count(limits::SUBDIVISIONS),
             Key::Segments => Count(limits::SEGMENTS),
             Key::MaxDepth => Count(limits::REFLECTION_DEPTH),
-            Key::Name | Key::Path | Key::Smooth | Key::Up => return None,
+            Key::Name | Key::Path | Key::Smooth | Key::Up | Key::Materials => return None,
         })
     }
 }
@@ -176,6 +179,7 @@ enum Slot<'a> {
     Name(&'a mut Option<String>),
     Path(&'a mut PathBuf),
     Axis(&'a mut UpAxis),
+    Source(&'a mut MaterialSource),
 }
 
 fn component(v: &mut Vec3, a: Axis) -> &mut f32 {
@@ -243,7 +247,9 @@ impl Part {
                         keys.extend(xyz(Key::Size));
                         keys.push(Key::Segments);
                     }
-                    Shape::Mesh { .. } => keys.extend([Key::Path, Key::Scale, Key::Up]),
+                    Shape::Mesh { .. } => {
+                        keys.extend([Key::Path, Key::Scale, Key::Up, Key::Materials]);
+                    }
                 }
                 keys.extend(xyz(Key::Rotation));
                 keys.extend(xyz(Key::Color));
@@ -301,6 +307,7 @@ impl Part {
                     (Key::Path, Shape::Mesh { path, .. }) => Slot::Path(path),
                     (Key::Scale, Shape::Mesh { scale, .. }) => Slot::Number(scale),
                     (Key::Up, Shape::Mesh { up, .. }) => Slot::Axis(up),
+                    (Key::Materials, Shape::Mesh { materials, .. }) => Slot::Source(materials),
                     (Key::Rotation(a), _) => Slot::Number(component(&mut o.rotation, a)),
                     (Key::Color(a), _) => Slot::Number(component(&mut m.color, a)),
                     (Key::Diffuse, _) => Slot::Number(&mut m.diffuse),
@@ -323,6 +330,7 @@ impl Part {
             Slot::Name(n) => Value::Text(n.clone().unwrap_or_default()),
             Slot::Path(p) => Value::Text(p.display().to_string()),
             Slot::Axis(a) => Value::Text(a.name().to_string()),
+            Slot::Source(m) => Value::Text(m.name().to_string()),
         })
     }
 }
@@ -358,17 +366,20 @@ pub fn stepped(scene: &Scene, item: Item, key: Key, times: i32) -> Result<Scene,
             *n = new as u32;
         }
         (Slot::Flag(b), _) => *b = !*b,
-        (Slot::Axis(a), _) => {
-            let all = UpAxis::ALL;
-            let at = all.iter().position(|x| x == a).unwrap_or(0) as i64;
-            *a = all[(at + times as i64).rem_euclid(all.len() as i64) as usize];
-        }
+        (Slot::Axis(a), _) => *a = cycled(&UpAxis::ALL, *a, times),
+        (Slot::Source(m), _) => *m = cycled(&MaterialSource::ALL, *m, times),
         (Slot::Name(_) | Slot::Path(_), _) => {
             return Err("press Enter to type a new value".into());
         }
         (Slot::Number(_) | Slot::Count(_), _) => return Err("no range for this property".into()),
     }
     checked(scene, item, part)
+}
+
+/// The choice `times` steps after `current` in `all`, wrapping around.
+fn cycled<T: Copy + PartialEq>(all: &[T], current: T, times: i32) -> T {
+    let at = all.iter().position(|x| *x == current).unwrap_or(0) as i64;
+    all[(at + times as i64).rem_euclid(all.len() as i64) as usize]
 }
 
 /// `scene` with `key` of `item` set from typed `text`.
@@ -402,6 +413,10 @@ pub fn typed(scene: &Scene, item: Item, key: Key, text: &str) -> Result<Scene, R
         Slot::Axis(a) => {
             *a = UpAxis::from_name(t)
                 .ok_or_else(|| format!("`{t}` is not an axis: x, y, z, -x, -y or -z"))?;
+        }
+        Slot::Source(m) => {
+            *m = MaterialSource::from_name(t)
+                .ok_or_else(|| format!("`{t}` is not file or object"))?;
         }
         Slot::Path(p) => {
             if t.is_empty() {
@@ -453,5 +468,32 @@ mod tests {
             Part::of(&scene, Item::Object(0)).unwrap().value(Key::Up),
             None
         );
+    }
+
+    #[test]
+    fn a_meshs_materials_toggle_between_file_and_object_and_take_a_typed_name() {
+        let mut scene = default_scene();
+        scene.objects.push(Object::new(Shape::new(
+            ShapeKind::Mesh,
+            glam::Vec3::ZERO,
+            "chair.obj".into(),
+        )));
+        let item = Item::Object(scene.objects.len() - 1);
+        let source = |scene: &Scene| Part::of(scene, item).unwrap().value(Key::Materials);
+        assert_eq!(source(&scene), Some(Value::Text("file".into())));
+        let toggled = stepped(&scene, item, Key::Materials, 1).unwrap();
+        assert_eq!(source(&toggled), Some(Value::Text("object".into())));
+        let back = stepped(&toggled, item, Key::Materials, -1).unwrap();
+        assert_eq!(source(&back), Some(Value::Text("file".into())));
+        let typed_in = typed(&scene, item, Key::Materials, " Object ").unwrap();
+        assert_eq!(source(&typed_in), Some(Value::Text("object".into())));
+        assert!(
+            typed(&scene, item, Key::Materials, "mtl")
+                .unwrap_err()
+                .contains("not file or object")
+        );
+        // Only meshes have the choice.
+        let part = Part::of(&scene, Item::Object(0)).unwrap();
+        assert!(!part.keys().contains(&Key::Materials));
     }
 }

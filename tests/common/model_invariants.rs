@@ -60,6 +60,7 @@ pub fn broken(g: &ModelGeometry) -> Option<String> {
         position: glam::Vec3::ZERO,
         scale: 1.0,
         up: rastray::scene::UpAxis::Z,
+        materials: rastray::scene::MaterialSource::File,
     });
     let mesh = tessellate(&object, Some(g));
     if mesh.triangle_count() != g.triangles.len()

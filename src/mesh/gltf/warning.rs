@@ -1,4 +1,5 @@
-//! Parts of a glTF file that rastray reads past: the rest of the file still loads.
+//! Parts of a model file that rastray reads past (glTF primitives, OBJ materials and the files
+//! they name): the rest of the file still loads.
 
 use std::fmt;
 
@@ -20,6 +21,28 @@ pub enum ImportWarning {
     /// A material whose base colour comes from a texture: rastray has no textures, so the
     /// colour is the base colour factor alone.
     TextureIgnored { material: String },
+    /// An OBJ's `mtllib` that could not be read (missing, outside the model's folder, not a
+    /// file): the faces of its materials take the object's material.
+    MaterialLibraryNotRead {
+        reference: String,
+        line: usize,
+        reason: String,
+    },
+    /// Lines of an MTL file that were skipped: the first one and how many in all.
+    MaterialLinesSkipped {
+        library: String,
+        line: usize,
+        problem: &'static str,
+        count: usize,
+    },
+    /// An OBJ's `usemtl` names a material no library defines.
+    UnknownMaterial { name: String },
+    /// A material's texture that could not be read: the material is drawn without it.
+    TextureNotRead {
+        material: String,
+        reference: String,
+        reason: String,
+    },
 }
 
 impl fmt::Display for ImportWarning {
@@ -40,6 +63,41 @@ impl fmt::Display for ImportWarning {
                 f,
                 "{material} takes its base colour from a texture; rastray uses the base colour \
                  factor alone"
+            ),
+            ImportWarning::MaterialLibraryNotRead {
+                reference,
+                line,
+                reason,
+            } => write!(
+                f,
+                "line {line}: mtllib \"{reference}\" not read: {reason}; its materials are \
+                 drawn with the object's material"
+            ),
+            ImportWarning::MaterialLinesSkipped {
+                library,
+                line,
+                problem,
+                count,
+            } => {
+                write!(f, "{library}:{line}: {problem}; line skipped")?;
+                match count.saturating_sub(1) {
+                    0 => Ok(()),
+                    more => write!(f, " (and {more} more)"),
+                }
+            }
+            ImportWarning::UnknownMaterial { name } => write!(
+                f,
+                "usemtl \"{name}\": no material library defines it; its faces take the \
+                 object's material"
+            ),
+            ImportWarning::TextureNotRead {
+                material,
+                reference,
+                reason,
+            } => write!(
+                f,
+                "material \"{material}\": map_Kd \"{reference}\" not read: {reason}; drawn \
+                 without it"
             ),
         }
     }

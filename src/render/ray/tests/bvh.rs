@@ -23,6 +23,7 @@ pub(super) fn mesh_from(triangles: &[[Vec3; 3]]) -> Mesh {
             .collect(),
         positions,
         colors: None,
+        uvs: None,
         flat: false,
     }
 }
@@ -180,6 +181,7 @@ fn sphere_mesh() -> Mesh {
         positions: f.positions,
         triangles: f.triangles,
         colors: None,
+        uvs: None,
         flat: false,
     }
 }

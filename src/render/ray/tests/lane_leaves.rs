@@ -26,6 +26,7 @@ fn sphere(doubled: bool) -> Mesh {
         positions: f.positions,
         triangles: f.triangles,
         colors: None,
+        uvs: None,
         flat: true,
     }
 }

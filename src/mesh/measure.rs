@@ -1,0 +1,272 @@
+//! Measurements of a triangle mesh as an engineer checks a part: bounding-box size, surface area,
+//! whether it is closed, its non-manifold edges and degenerate triangles, and for a closed mesh
+//! its volume by the divergence theorem.
+//!
+//! Topology is read on welded positions: corners at bit-identical coordinates (−0 as 0) are one
+//! vertex, so a cube whose faces each have their own vertices (as flat shading and most exporters
+//! leave it) is still closed. An edge used by one triangle is a boundary edge, by more than two a
+//! non-manifold one. A closed mesh (no boundary or non-manifold edge) whose neighbouring
+//! triangles all wind the same way bounds a volume: V = Σ a·(b × c) / 6 over its triangles, in
+//! `f64` so that a million triangles lose no digits.
+
+use glam::{DVec3, Vec3};
+
+use super::weld::{Welder, coordinate_bits};
+
+/// What [`measure`] finds. Lengths in the mesh's units, areas in their square, volumes in their
+/// cube.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Measurements {
+    /// Axis-aligned bounds (min, max); `None` for no triangles.
+    pub bounds: Option<(Vec3, Vec3)>,
+    /// Triangles measured.
+    pub triangles: usize,
+    /// Sum of the triangles' areas.
+    pub area: f64,
+    /// Edges used by exactly one triangle.
+    pub boundary_edges: usize,
+    /// Edges used by three or more triangles.
+    pub non_manifold_edges: usize,
+    /// Edges whose two triangles run along them the same way (one of them is turned over).
+    pub misoriented_edges: usize,
+    /// Triangles with zero area (corners that coincide or lie on one line).
+    pub degenerate_triangles: usize,
+    /// The enclosed volume, for a closed and consistently wound mesh; positive whichever way its
+    /// triangles face.
+    pub volume: Option<f64>,
+}
+
+impl Measurements {
+    /// No boundary and no non-manifold edge, and at least one triangle.
+    pub fn closed(&self) -> bool {
+        self.triangles > 0 && self.boundary_edges == 0 && self.non_manifold_edges == 0
+    }
+
+    /// The bounding box's size (width, height, depth); zero when empty.
+    pub fn size(&self) -> Vec3 {
+        self.bounds.map_or(Vec3::ZERO, |(lo, hi)| hi - lo)
+    }
+
+    /// `closed` or `open (N boundary edges)`, as `rastray info` and the editor say it.
+    pub fn closure(&self) -> String {
+        if self.closed() {
+            "closed".into()
+        } else {
+            format!("open ({} boundary edges)", self.boundary_edges)
+        }
+    }
+
+    /// These measurements with lengths divided by `scale` > 0 (areas by its square, volumes by
+    /// its cube): a scaled mesh measured in its file's units.
+    pub fn unscaled(self, scale: f32) -> Measurements {
+        let s = scale as f64;
+        Measurements {
+            bounds: self.bounds.map(|(lo, hi)| (lo / scale, hi / scale)),
+            area: self.area / (s * s),
+            volume: self.volume.map(|v| v / (s * s * s)),
+            ..self
+        }
+    }
+
+    /// Several objects together (a scene): bounds joined, counts and areas added, volume the sum
+    /// of the closed ones' (`None` when none is closed).
+    pub fn total(all: &[Measurements]) -> Measurements {
+        let bounds = all
+            .iter()
+            .filter_map(|m| m.bounds)
+            .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
+        let volumes: Vec<f64> = all.iter().filter_map(|m| m.volume).collect();
+        Measurements {
+            bounds,
+            triangles: all.iter().map(|m| m.triangles).sum(),
+            area: all.iter().map(|m| m.area).sum(),
+            boundary_edges: all.iter().map(|m| m.boundary_edges).sum(),
+            non_manifold_edges: all.iter().map(|m| m.non_manifold_edges).sum(),
+            misoriented_edges: all.iter().map(|m| m.misoriented_edges).sum(),
+            degenerate_triangles: all.iter().map(|m| m.degenerate_triangles).sum(),
+            volume: (!volumes.is_empty()).then(|| volumes.iter().sum()),
+        }
+    }
+}
+
+/// Measures the triangles of `parts` (each a position list and triangles indexing it) as one
+/// mesh, welded across parts.
+pub fn measure(parts: &[(&[Vec3], &[[u32; 3]])]) -> Measurements {
+    let distinct: usize = parts.iter().map(|(p, _)| p.len()).sum();
+    let mut welder = Welder::<3>::with_capacity(distinct);
+    let mut welded_triangles: Vec<[u32; 3]> = Vec::new();
+    let mut positions: Vec<DVec3> = Vec::new();
+    let mut m = Measurements::default();
+    for (part_positions, triangles) in parts {
+        let ids: Vec<u32> = part_positions
+            .iter()
+            .map(|p| {
+                let id = welder.index(p.to_array().map(coordinate_bits));
+                if id as usize == positions.len() {
+                    positions.push(p.as_dvec3());
+                }
+                id
+            })
+            .collect();
+        for &[a, b, c] in *triangles {
+            let [pa, pb, pc] = [a, b, c].map(|i| part_positions[i as usize]);
+            m.bounds = Some(match m.bounds {
+                None => (pa.min(pb).min(pc), pa.max(pb).max(pc)),
+                Some((lo, hi)) => (lo.min(pa).min(pb).min(pc), hi.max(pa).max(pb).max(pc)),
+            });
+            m.triangles += 1;
+            if (pb - pa).cross(pc - pa).normalize_or_zero() == Vec3::ZERO {
+                m.degenerate_triangles += 1;
+            }
+            let [da, db, dc] = [pa, pb, pc].map(Vec3::as_dvec3);
+            m.area += 0.5 * (db - da).cross(dc - da).length();
+            welded_triangles.push([a, b, c].map(|i| ids[i as usize]));
+        }
+    }
+    let edges = edge_counts(&welded_triangles);
+    m.boundary_edges = edges.boundary;
+    m.non_manifold_edges = edges.non_manifold;
+    m.misoriented_edges = edges.misoriented;
+    if m.closed() && m.misoriented_edges == 0 {
+        let six_v: f64 = welded_triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| positions[i as usize]);
+                a.dot(b.cross(c))
+            })
+            .sum();
+        m.volume = Some((six_v / 6.0).abs());
+    }
+    m
+}
+
+/// How the edges of a welded mesh are shared.
+struct EdgeCounts {
+    boundary: usize,
+    non_manifold: usize,
+    misoriented: usize,
+}
+
+/// Counts the edges by how many triangles use them. A triangle with a repeated corner adds no
+/// edge between equal corners.
+fn edge_counts(triangles: &[[u32; 3]]) -> EdgeCounts {
+    // Each edge as its two ends, lower first, shifted left one bit with the direction in bit 0.
+    let mut keys: Vec<u128> = Vec::with_capacity(triangles.len() * 3);
+    for &[a, b, c] in triangles {
+        for (from, to) in [(a, b), (b, c), (c, a)] {
+            if from != to {
+                let (lo, hi) = (from.min(to), from.max(to));
+                let key = ((lo as u128) << 32 | hi as u128) << 1 | (from > to) as u128;
+                keys.push(key);
+            }
+        }
+    }
+    keys.sort_unstable();
+    let mut counts = EdgeCounts {
+        boundary: 0,
+        non_manifold: 0,
+        misoriented: 0,
+    };
+    let mut start = 0;
+    while start < keys.len() {
+        let edge = keys[start] >> 1;
+        let end = start + keys[start..].partition_point(|k| k >> 1 == edge);
+        match end - start {
+            1 => counts.boundary += 1,
+            2 if keys[start] == keys[start + 1] => counts.misoriented += 1,
+            2 => {}
+            _ => counts.non_manifold += 1,
+        }
+        start = end;
+    }
+    counts
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{cuboid, icosahedron};
+
+    /// `triangles` with every triangle given its own three corners, as a flat-shaded export.
+    fn unshared(positions: &[Vec3], triangles: &[[u32; 3]]) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+        let corners: Vec<Vec3> = triangles
+            .iter()
+            .flat_map(|t| t.map(|i| positions[i as usize]))
+            .collect();
+        let split = (0..triangles.len() as u32)
+            .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+            .collect();
+        (corners, split)
+    }
+
+    #[test]
+    fn a_unit_cube_of_unshared_faces_is_closed_with_volume_one() {
+        let cube = cuboid(Vec3::ONE, 3);
+        let (positions, triangles) = unshared(&cube.positions, &cube.triangles);
+        let m = measure(&[(&positions, &triangles)]);
+        assert!(m.closed(), "{m:?}");
+        assert_eq!(m.closure(), "closed");
+        assert!((m.volume.unwrap() - 1.0).abs() < 1e-9, "{m:?}");
+        assert!((m.area - 6.0).abs() < 1e-9);
+        assert_eq!(m.size(), Vec3::ONE);
+        assert_eq!((m.non_manifold_edges, m.degenerate_triangles), (0, 0));
+    }
+
+    #[test]
+    fn an_icosphere_is_within_half_a_percent_of_the_sphere() {
+        let sphere = icosahedron(2.0, 5);
+        let m = measure(&[(&sphere.positions, &sphere.triangles)]);
+        let exact = 4.0 / 3.0 * std::f64::consts::PI * 8.0;
+        let error = (m.volume.unwrap() - exact).abs() / exact;
+        assert!(error < 0.005, "{error}");
+        // The polyhedron lies inside the sphere.
+        assert!(m.volume.unwrap() < exact);
+    }
+
+    #[test]
+    fn a_missing_face_opens_the_cube_and_a_fin_is_non_manifold() {
+        let cube = cuboid(Vec3::ONE, 1);
+        let open = &cube.triangles[2..];
+        let m = measure(&[(&cube.positions, open)]);
+        assert_eq!(m.closure(), "open (4 boundary edges)");
+        assert_eq!(m.volume, None);
+        // A third triangle on one of the cube's edges: that edge is shared by three.
+        let [a, b, _] = cube.triangles[0];
+        let mut positions = cube.positions.clone();
+        positions.push(Vec3::splat(5.0));
+        let mut fin = cube.triangles.clone();
+        fin.push([a, b, positions.len() as u32 - 1]);
+        let m = measure(&[(&positions, &fin)]);
+        assert_eq!(m.non_manifold_edges, 1);
+        assert!(!m.closed());
+    }
+
+    #[test]
+    fn a_turned_over_face_gives_no_volume_and_degenerate_triangles_are_counted() {
+        let cube = cuboid(Vec3::ONE, 1);
+        let mut flipped = cube.triangles.clone();
+        flipped[0].swap(1, 2);
+        let m = measure(&[(&cube.positions, &flipped)]);
+        assert!(m.closed());
+        assert!(m.misoriented_edges > 0);
+        assert_eq!(m.volume, None);
+        let line = [Vec3::ZERO, Vec3::X, Vec3::X * 2.0];
+        let m = measure(&[(&line, &[[0, 1, 2], [0, 0, 1]])]);
+        assert_eq!(m.degenerate_triangles, 2);
+    }
+
+    #[test]
+    fn parts_weld_together_and_scale_divides_out() {
+        // The cube's triangles in two parts, each with its own copy of the positions.
+        let cube = cuboid(Vec3::splat(2.0), 1);
+        let (first, second) = cube.triangles.split_at(5);
+        let m = measure(&[(&cube.positions, first), (&cube.positions, second)]);
+        assert!((m.volume.unwrap() - 8.0).abs() < 1e-9);
+        let file = m.unscaled(2.0);
+        assert!((file.volume.unwrap() - 1.0).abs() < 1e-9);
+        assert!((file.area - 6.0).abs() < 1e-9);
+        assert_eq!(file.size(), Vec3::ONE);
+        let total = Measurements::total(&[m, file]);
+        assert!((total.volume.unwrap() - 9.0).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,63 @@
+//! Each level of a mip chain from the one before: 2×2 texels averaged in linear space (an odd
+//! last row or column is averaged with itself).
+
+use super::texture::MipLevel;
+
+/// The levels below `base`, halving down to 1×1, finest first; `base` comes first.
+pub fn mip_chain(base: MipLevel) -> Vec<MipLevel> {
+    let mut levels = vec![base];
+    loop {
+        let last = levels.last().expect("the chain starts with the base");
+        if last.width == 1 && last.height == 1 {
+            return levels;
+        }
+        let next = halved(last);
+        levels.push(next);
+    }
+}
+
+/// `level` at half its size (at least 1×1), each texel the mean of the 2×2 it covers.
+pub fn halved(level: &MipLevel) -> MipLevel {
+    let width = (level.width / 2).max(1);
+    let height = (level.height / 2).max(1);
+    let mut texels = Vec::with_capacity((width * height) as usize);
+    for y in 0..height {
+        let (y0, y1) = (2 * y, (2 * y + 1).min(level.height - 1));
+        for x in 0..width {
+            let (x0, x1) = (2 * x, (2 * x + 1).min(level.width - 1));
+            let quad = [
+                level.texel(x0, y0),
+                level.texel(x1, y0),
+                level.texel(x0, y1),
+                level.texel(x1, y1),
+            ];
+            texels.push(std::array::from_fn(|c| {
+                0.25 * (quad[0][c] + quad[1][c] + quad[2][c] + quad[3][c])
+            }));
+        }
+    }
+    MipLevel {
+        width,
+        height,
+        texels,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_chain_halves_down_to_one_texel_and_keeps_the_mean() {
+        let base = MipLevel {
+            width: 4,
+            height: 2,
+            texels: (0..8).map(|i| [i as f32, 0.0, 1.0, 1.0]).collect(),
+        };
+        let chain = mip_chain(base);
+        let sizes: Vec<(u32, u32)> = chain.iter().map(|l| (l.width, l.height)).collect();
+        assert_eq!(sizes, [(4, 2), (2, 1), (1, 1)]);
+        assert_eq!(chain[1].texels[0][0], 2.5); // (0 + 1 + 4 + 5) / 4
+        assert_eq!(chain[2].texels[0][0], 3.5); // the mean of 0..8
+    }
+}
