@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use crate::mesh::texture::Appearance;
 use crate::mesh::{
     Mesh, MeshFile, MeshFileError, PlyModel, Sphere, StlModel, UniquePositions, tessellate,
-    tessellate_part,
+    tessellate_part, with_corner_uvs,
 };
 use crate::scene::{Falloff, Light, Material, Object, Scene, SceneError, SceneWarning, Shape};
 
@@ -140,6 +140,30 @@ fn part_material(object: &Object, from_file: Option<Material>) -> Material {
     }
 }
 
+/// The mesh and appearance one part of a mesh object is drawn with: the file's texture (its
+/// corner UVs put on the mesh's vertices) and alpha mode while the object keeps the file's
+/// material, none when the object's own material replaces it.
+pub fn part_appearance(
+    object: &Object,
+    mesh: Mesh,
+    corner_uvs: Option<&[[glam::Vec2; 3]]>,
+    from_file: &Appearance,
+) -> (Mesh, Appearance) {
+    if object.material != Material::default() {
+        return (mesh, Appearance::plain());
+    }
+    match (corner_uvs, &from_file.base_color) {
+        (Some(uvs), Some(_)) => (with_corner_uvs(mesh, uvs), from_file.clone()),
+        _ => (
+            mesh,
+            Appearance {
+                base_color: None,
+                ..from_file.clone()
+            },
+        ),
+    }
+}
+
 impl World {
     /// Tessellates `scene`; model paths are relative to `base_dir` (the scene file's directory).
     pub fn build(scene: &Scene, base_dir: &Path) -> Result<World, SceneError> {
@@ -225,8 +249,15 @@ impl World {
                         .par_iter()
                         .map(|part| {
                             let mesh = tessellate_part(object, &part.geometry, centre);
+                            let (mesh, appearance) = part_appearance(
+                                object,
+                                mesh,
+                                part.geometry.corner_uvs.as_deref(),
+                                &part.appearance,
+                            );
+                            let material = part_material(object, part.material);
                             (
-                                WorldObject::new(mesh, part_material(object, part.material)),
+                                WorldObject::with_appearance(mesh, material, appearance),
                                 WorldObjectSource {
                                     object: index,
                                     part: Some(part.label.clone()),
@@ -235,11 +266,23 @@ impl World {
                         })
                         .collect()
                 }
-                Some(
-                    MeshFile::Obj(geometry)
-                    | MeshFile::Stl(StlModel { geometry, .. })
-                    | MeshFile::Ply(PlyModel { geometry, .. }),
-                ) => vec![(
+                Some(MeshFile::Ply(PlyModel {
+                    geometry,
+                    appearance,
+                    ..
+                })) => {
+                    let mesh = tessellate(object, Some(geometry));
+                    let corner_uvs = geometry.corner_uvs.as_deref();
+                    let (mesh, appearance) = part_appearance(object, mesh, corner_uvs, appearance);
+                    vec![(
+                        WorldObject::with_appearance(mesh, object.material, appearance),
+                        WorldObjectSource {
+                            object: index,
+                            part: None,
+                        },
+                    )]
+                }
+                Some(MeshFile::Obj(geometry) | MeshFile::Stl(StlModel { geometry, .. })) => vec![(
                     WorldObject::new(tessellate(object, Some(geometry)), object.material),
                     WorldObjectSource {
                         object: index,

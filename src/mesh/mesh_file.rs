@@ -123,10 +123,11 @@ impl MeshFile {
         }
     }
 
-    /// What the loader skipped; only glTF files report anything.
+    /// What the loader skipped; glTF files and PLY textures report anything.
     pub fn warnings(&self) -> &[ImportWarning] {
         match self {
             MeshFile::Gltf(model) => &model.warnings,
+            MeshFile::Ply(model) => &model.warnings,
             _ => &[],
         }
     }

@@ -24,6 +24,7 @@ mod scratch;
 mod shading;
 mod simd;
 mod stats;
+mod texturing;
 
 pub use algorithm::Algorithm;
 pub use camera::{NEAR, View};
