@@ -141,15 +141,17 @@ fn part_material(object: &Object, from_file: Option<Material>) -> Material {
 }
 
 /// The mesh and appearance one part of a mesh object is drawn with: the file's texture (its
-/// corner UVs put on the mesh's vertices) and alpha mode while the object keeps the file's
-/// material, none when the object's own material replaces it.
+/// corner UVs put on the mesh's vertices) and alpha mode, unless the file's material is
+/// `replaceable` (glTF's) and the object's own material replaces it. A file without materials
+/// (PLY) keeps its texture under the object's material.
 pub fn part_appearance(
     object: &Object,
     mesh: Mesh,
     corner_uvs: Option<&[[glam::Vec2; 3]]>,
     from_file: &Appearance,
+    replaceable: bool,
 ) -> (Mesh, Appearance) {
-    if object.material != Material::default() {
+    if replaceable && object.material != Material::default() {
         return (mesh, Appearance::plain());
     }
     match (corner_uvs, &from_file.base_color) {
@@ -254,6 +256,7 @@ impl World {
                                 mesh,
                                 part.geometry.corner_uvs.as_deref(),
                                 &part.appearance,
+                                true,
                             );
                             let material = part_material(object, part.material);
                             (
@@ -273,7 +276,8 @@ impl World {
                 })) => {
                     let mesh = tessellate(object, Some(geometry));
                     let corner_uvs = geometry.corner_uvs.as_deref();
-                    let (mesh, appearance) = part_appearance(object, mesh, corner_uvs, appearance);
+                    let (mesh, appearance) =
+                        part_appearance(object, mesh, corner_uvs, appearance, false);
                     vec![(
                         WorldObject::with_appearance(mesh, object.material, appearance),
                         WorldObjectSource {
