@@ -8,7 +8,7 @@ use std::time::SystemTime;
 
 use rayon::prelude::*;
 
-use crate::mesh::texture::{Appearance, Sampler, TextureBinding};
+use crate::mesh::texture::Appearance;
 use crate::mesh::{
     Mesh, MeshFile, MeshFileError, ModelPart, Sphere, UniquePositions, tessellate, tessellate_part,
     with_corner_uvs,
@@ -160,9 +160,10 @@ fn part_material(object: &Object, from_file: Option<Material>) -> Material {
     }
 }
 
-/// The texture one part of a mesh object is drawn with, and its mesh with texture coordinates:
-/// the file's texture when the object uses the file's materials and the part has coordinates
-/// everywhere; otherwise plain, and the mesh as it is.
+/// The mesh and appearance one part of a mesh object is drawn with: the file's texture (its
+/// corner UVs put on the mesh's vertices) and alpha mode when the object uses the file's
+/// materials; plain otherwise. A part without texture coordinates everywhere is drawn
+/// untextured.
 fn part_appearance(object: &Object, part: &ModelPart<'_>, mesh: Mesh) -> (Mesh, Appearance) {
     let from_file = matches!(
         object.shape,
@@ -171,18 +172,18 @@ fn part_appearance(object: &Object, part: &ModelPart<'_>, mesh: Mesh) -> (Mesh, 
             ..
         }
     );
-    match (part.texture, &part.geometry.corner_uvs, from_file) {
-        (Some((_, texture)), Some(uvs), true) => (
-            with_corner_uvs(mesh, uvs),
+    if !from_file {
+        return (mesh, Appearance::plain());
+    }
+    match (&part.geometry.corner_uvs, &part.appearance.base_color) {
+        (Some(uvs), Some(_)) => (with_corner_uvs(mesh, uvs), part.appearance.clone()),
+        _ => (
+            mesh,
             Appearance {
-                base_color: Some(TextureBinding {
-                    texture: texture.clone(),
-                    sampler: Sampler::default(),
-                }),
-                ..Appearance::plain()
+                base_color: None,
+                ..part.appearance.clone()
             },
         ),
-        _ => (mesh, Appearance::plain()),
     }
 }
 

@@ -179,7 +179,7 @@ fn materials_map_base_colour_roughness_and_metallic() {
 fn points_lines_and_textures_are_reported_once_each() {
     let model = load("scene.gltf");
     assert_eq!(
-        model.warnings,
+        model.warnings[..2],
         [
             ImportWarning::NotTriangles {
                 primitive: "mesh 3 \"Wire\" primitive 0".into(),
@@ -189,10 +189,19 @@ fn points_lines_and_textures_are_reported_once_each() {
                 primitive: "mesh 3 \"Wire\" primitive 1".into(),
                 mode: "points"
             },
-            ImportWarning::TextureIgnored {
-                material: "material 2 \"Painted\"".into()
-            },
         ]
+    );
+    // The texture, paint.png, is missing: a warning that names it, and the part untextured.
+    let [ImportWarning::TextureUnreadable { material, reason }] = &model.warnings[2..] else {
+        panic!("{:?}", model.warnings);
+    };
+    assert_eq!(material, "material 2 \"Painted\"");
+    assert!(reason.starts_with("texture paint.png: "), "{reason}");
+    assert!(
+        model
+            .parts
+            .iter()
+            .all(|p| p.appearance.base_color.is_none())
     );
 }
 

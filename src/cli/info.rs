@@ -160,7 +160,13 @@ fn describe(model: &MeshFile) -> String {
     if let MeshFile::Ply(ply) = model
         && let Some(texture) = &ply.texture
     {
-        text += &format!(", texture {texture} (not drawn)");
+        text += &match &ply.appearance.base_color {
+            Some(binding) => {
+                let (w, h) = binding.texture.size();
+                format!(", texture {texture} {w}×{h}")
+            }
+            None => format!(", texture {texture} (not read)"),
+        };
     }
     text
 }

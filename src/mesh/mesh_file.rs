@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use glam::Vec3;
 
-use super::texture::Texture;
+use super::texture::{Appearance, Texture};
 use crate::scene::Material;
 
 use super::geometry::ModelGeometry;
@@ -86,6 +86,7 @@ impl MeshFile {
                     geometry: &p.geometry,
                     material: p.material,
                     texture: p.texture.as_ref().map(|(name, t)| (name.as_str(), t)),
+                    appearance: Appearance::textured_by(p.texture.as_ref().map(|(_, t)| t)),
                 })
                 .collect(),
             MeshFile::Gltf(model) => model
@@ -96,16 +97,27 @@ impl MeshFile {
                     geometry: &p.geometry,
                     material: p.material,
                     texture: None,
+                    appearance: p.appearance.clone(),
                 })
                 .collect(),
-            MeshFile::Stl(StlModel { geometry, .. }) | MeshFile::Ply(PlyModel { geometry, .. }) => {
-                vec![ModelPart {
-                    label: None,
-                    geometry,
-                    material: None,
-                    texture: None,
-                }]
-            }
+            MeshFile::Stl(StlModel { geometry, .. }) => vec![ModelPart {
+                label: None,
+                geometry,
+                material: None,
+                texture: None,
+                appearance: Appearance::plain(),
+            }],
+            MeshFile::Ply(PlyModel {
+                geometry,
+                appearance,
+                ..
+            }) => vec![ModelPart {
+                label: None,
+                geometry,
+                material: None,
+                texture: None,
+                appearance: appearance.clone(),
+            }],
         }
     }
 
@@ -146,11 +158,12 @@ impl MeshFile {
         )
     }
 
-    /// What the loader skipped; glTF and OBJ files report it.
+    /// What the loader skipped; glTF and OBJ files and PLY textures report it.
     pub fn warnings(&self) -> &[ImportWarning] {
         match self {
             MeshFile::Gltf(model) => &model.warnings,
             MeshFile::Obj(model) => &model.warnings,
+            MeshFile::Ply(model) => &model.warnings,
             _ => &[],
         }
     }
@@ -166,7 +179,7 @@ impl MeshFile {
 }
 
 /// One part of a model file as the world draws it.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct ModelPart<'a> {
     /// Which part, as `material "Wood"` or a glTF primitive's label; `None` for a file drawn
     /// whole.
@@ -176,4 +189,6 @@ pub struct ModelPart<'a> {
     pub material: Option<Material>,
     /// The part's colour texture: its name as the file gives it, and the decoded image.
     pub texture: Option<(&'a str, &'a Arc<Texture>)>,
+    /// How the file draws the part: its colour texture and sampler, and its alpha mode.
+    pub appearance: Appearance,
 }

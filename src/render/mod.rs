@@ -30,6 +30,7 @@ mod shading;
 mod simd;
 mod stats;
 mod surface_hit;
+mod texturing;
 mod triangle_edges;
 
 pub use algorithm::Algorithm;

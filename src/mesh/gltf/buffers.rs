@@ -54,7 +54,11 @@ pub fn load_buffers(
 }
 
 /// The bytes a buffer URI names: a base64 `data:` URI, or a file inside `folder`.
-fn read_uri(uri: &str, folder: &ModelFolder, files: &mut Vec<PathBuf>) -> Result<Vec<u8>, String> {
+pub fn read_uri(
+    uri: &str,
+    folder: &ModelFolder,
+    files: &mut Vec<PathBuf>,
+) -> Result<Vec<u8>, String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let (_, payload) = rest
             .split_once(";base64,")

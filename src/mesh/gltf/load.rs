@@ -9,6 +9,7 @@ use ::gltf::json::{self, mesh::Semantic};
 use ::gltf::{Document, Gltf, Node};
 use glam::{Mat4, Vec3};
 
+use super::appearance::{ImageCache, PartAppearance, part_appearance};
 use super::buffers::load_buffers;
 use super::error::GltfError;
 use super::material::phong_from_pbr;
@@ -16,6 +17,7 @@ use super::primitive::{PrimitiveRead, read_primitive};
 use super::warning::ImportWarning;
 use crate::input_file::{MAX_MODEL_BYTES, read_bounded};
 use crate::mesh::ModelGeometry;
+use crate::mesh::texture::Appearance;
 use crate::model_folder::ModelFolder;
 use crate::scene::Material;
 
@@ -32,6 +34,9 @@ pub struct GltfPart {
     pub geometry: ModelGeometry,
     /// Its material mapped to Phong; `None` when the primitive names no material.
     pub material: Option<Material>,
+    /// Its base colour texture (with the geometry's corner UVs, when both could be read) and
+    /// alpha mode.
+    pub appearance: Appearance,
 }
 
 /// A glTF file as rastray draws it: one part per primitive instance, in scene order.
@@ -41,7 +46,7 @@ pub struct GltfModel {
     pub parts: Vec<GltfPart>,
     /// What was skipped, each reported once.
     pub warnings: Vec<ImportWarning>,
-    /// The buffer files read beside the model, in the order the document names them.
+    /// The buffer and image files read beside the model, in the order they were read.
     pub buffer_files: Vec<PathBuf>,
     /// Whether the file is a GLB container (else glTF's JSON).
     pub binary: bool,
@@ -72,10 +77,10 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
     let folder = ModelFolder::of(path).map_err(GltfError::Io)?;
     let mut buffer_files = Vec::new();
     let buffers = load_buffers(&document, blob, &folder, &mut buffer_files)?;
+    let mut images = ImageCache::new(&folder, &buffers, &mut buffer_files);
     let mut parts = Vec::new();
     let mut skipped = 0;
     let mut triangles = 0u64;
-    let mut textured = HashSet::new();
     for (node, transform) in node_instances(&document)? {
         let Some(mesh) = node.mesh() else { continue };
         for primitive in mesh.primitives() {
@@ -99,7 +104,21 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
                     limit: crate::world::MAX_TRIANGLES,
                 });
             }
-            match read_primitive(&primitive, &label, &buffers, transform)? {
+            let material = primitive.material();
+            let PartAppearance { appearance, uv_set } = match material.index() {
+                Some(index) => {
+                    let name = match material.name() {
+                        Some(name) => format!("material {index} {name:?}"),
+                        None => format!("material {index}"),
+                    };
+                    part_appearance(&material, &name, &mut images, &mut warnings)
+                }
+                None => PartAppearance {
+                    appearance: Appearance::plain(),
+                    uv_set: None,
+                },
+            };
+            match read_primitive(&primitive, &label, &buffers, transform, uv_set)? {
                 PrimitiveRead::Skipped(warning) => {
                     skipped += 1;
                     warnings.push(warning);
@@ -107,17 +126,14 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
                 // Fewer than three indices: nothing to draw, and no part to show for it.
                 PrimitiveRead::Triangles(geometry) if geometry.triangles.is_empty() => {}
                 PrimitiveRead::Triangles(geometry) => {
-                    let material = primitive.material();
-                    let phong = material.index().map(|index| {
+                    if let (Some((set, _)), None) = (uv_set, &geometry.corner_uvs) {
+                        warnings.push(ImportWarning::NoTextureCoordinates {
+                            primitive: label.clone(),
+                            set,
+                        });
+                    }
+                    let phong = material.index().map(|_| {
                         let pbr = material.pbr_metallic_roughness();
-                        if pbr.base_color_texture().is_some() && textured.insert(index) {
-                            warnings.push(ImportWarning::TextureIgnored {
-                                material: match material.name() {
-                                    Some(name) => format!("material {index} {name:?}"),
-                                    None => format!("material {index}"),
-                                },
-                            });
-                        }
                         let [r, g, b, _alpha] = pbr.base_color_factor();
                         phong_from_pbr(
                             Vec3::new(r, g, b),
@@ -133,6 +149,7 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
                         label: format!("{node_label}, {label}"),
                         geometry,
                         material: phong,
+                        appearance,
                     });
                 }
             }
@@ -226,7 +243,8 @@ fn checked_document(
     });
     let tolerated = |path: &json::Path, error: SchemaError| {
         let path = path.as_str();
-        (error == SchemaError::Unsupported && path.starts_with("extensionsRequired"))
+        (error == SchemaError::Unsupported
+            && (path.starts_with("extensionsRequired") || path.starts_with("extensionsUsed")))
             || (error == SchemaError::Missing
                 && path.starts_with("accessors[")
                 && path.ends_with("].bufferView"))
@@ -240,6 +258,7 @@ fn checked_document(
     warnings.extend(
         root.extensions_required
             .iter()
+            .filter(|name| *name != "KHR_texture_transform")
             .map(|name| ImportWarning::UnsupportedExtension { name: name.clone() }),
     );
     Ok(Document::from_json_without_validation(root))

@@ -1,6 +1,7 @@
 //! glTF 2.0 import (`.gltf` with its buffers, and `.glb`) through the `gltf` crate.
 
 mod accessor;
+mod appearance;
 mod buffers;
 mod error;
 mod load;

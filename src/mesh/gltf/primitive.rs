@@ -5,11 +5,12 @@ use std::collections::HashMap;
 use ::gltf::accessor::{DataType, Dimensions};
 use ::gltf::mesh::Mode;
 use ::gltf::{Accessor, Primitive, Semantic};
-use glam::{Mat3, Mat4, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3};
 
 use super::accessor::check_accessor;
 use super::error::GltfError;
 use super::warning::ImportWarning;
+use crate::mesh::texture::UvTransform;
 use crate::mesh::{ModelGeometry, unit_or_zero};
 
 /// What became of a primitive.
@@ -25,12 +26,15 @@ pub enum PrimitiveRead {
 /// the node's model-space matrix. Triangle strips and fans become triangle lists; a transform
 /// that mirrors (negative determinant) has its triangles' winding reversed, so fronts stay fronts.
 /// Vertex colours come from `COLOR_0` (RGB or RGBA, float or normalized 8- or 16-bit; linear,
-/// as the specification says; alpha is not drawn).
+/// as the specification says; alpha is not drawn). With `uv_set`, the texture coordinates of
+/// `TEXCOORD_n` (float, or normalized 8- or 16-bit) become the corner UVs, moved by the
+/// transform; a primitive without that set has none.
 pub fn read_primitive(
     primitive: &Primitive,
     label: &str,
     buffers: &[Vec<u8>],
     transform: Mat4,
+    uv_set: Option<(u32, UvTransform)>,
 ) -> Result<PrimitiveRead, GltfError> {
     let mode_name = match primitive.mode() {
         Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan => None,
@@ -111,6 +115,23 @@ pub fn read_primitive(
             ));
         }
     }
+    let uv_accessor = uv_set.and_then(|(set, _)| primitive.get(&Semantic::TexCoords(set)));
+    if let Some(accessor) = &uv_accessor {
+        let types = [DataType::F32, DataType::U8, DataType::U16];
+        check_accessor(accessor, &types, Dimensions::Vec2, buffers)
+            .map_err(|reason| accessor_error(accessor, "TEXCOORD", reason))?;
+        if accessor.count() != position_accessor.count() {
+            return Err(accessor_error(
+                accessor,
+                "TEXCOORD",
+                format!(
+                    "{} texture coordinates for {} positions",
+                    accessor.count(),
+                    position_accessor.count()
+                ),
+            ));
+        }
+    }
     if let Some(accessor) = primitive.indices() {
         check_accessor(
             &accessor,
@@ -164,6 +185,25 @@ pub fn read_primitive(
         }
         None => None,
     };
+    let uvs: Option<Vec<Vec2>> = match (&uv_accessor, uv_set) {
+        (Some(accessor), Some((set, uv_transform))) => {
+            let uvs: Vec<Vec2> = reader
+                .read_tex_coords(set)
+                .ok_or_else(|| unread(accessor, "TEXCOORD"))?
+                .into_f32()
+                .map(|uv| uv_transform.apply(Vec2::from(uv)))
+                .collect();
+            if uvs.iter().any(|uv| !uv.is_finite()) {
+                return Err(accessor_error(
+                    accessor,
+                    "TEXCOORD",
+                    "a texture coordinate is not a finite number".into(),
+                ));
+            }
+            Some(uvs)
+        }
+        _ => None,
+    };
     let order: Vec<u32> = match primitive.indices() {
         Some(accessor) => reader
             .read_indices()
@@ -197,12 +237,19 @@ pub fn read_primitive(
         }
     }
     let normals = normals.and_then(|normals| transform_normals(&normals, linear));
-    Ok(PrimitiveRead::Triangles(weld(
+    let mut geometry = weld(
         &positions,
         &triangles,
         normals.as_deref(),
         colors.as_deref(),
-    )))
+    );
+    geometry.corner_uvs = uvs.map(|uvs| {
+        triangles
+            .iter()
+            .map(|t| t.map(|i| uvs[i as usize]))
+            .collect()
+    });
+    Ok(PrimitiveRead::Triangles(geometry))
 }
 
 /// Where the `corner`-th index of a primitive lies, for an error that must not echo the value

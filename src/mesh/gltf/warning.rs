@@ -1,5 +1,5 @@
 //! Parts of a model file that rastray reads past (glTF primitives, OBJ materials and the files
-//! they name): the rest of the file still loads.
+//! they name, textures): the rest of the file still loads.
 
 use std::fmt;
 
@@ -18,9 +18,6 @@ pub enum ImportWarning {
     /// A primitive whose positions are not plain 32-bit floats in a buffer (compressed or
     /// quantized by an extension).
     UnreadablePositions { primitive: String, reason: String },
-    /// A material whose base colour comes from a texture: rastray has no textures, so the
-    /// colour is the base colour factor alone.
-    TextureIgnored { material: String },
     /// An OBJ's `mtllib` that could not be read (missing, outside the model's folder, not a
     /// file): the faces of its materials take the object's material.
     MaterialLibraryNotRead {
@@ -43,6 +40,17 @@ pub enum ImportWarning {
         reference: String,
         reason: String,
     },
+    /// A material whose base colour texture could not be read (missing, outside the model's
+    /// folder, not a PNG or JPEG, too large): its parts are drawn untextured.
+    TextureUnreadable { material: String, reason: String },
+    /// A textured primitive without the texture coordinate set its material names: drawn
+    /// untextured.
+    NoTextureCoordinates { primitive: String, set: u32 },
+    /// A model's texture (a PLY `comment TextureFile`, an MTL `map_Kd`) that could not be read:
+    /// `reason` names the file. The model is drawn untextured.
+    ModelTextureUnreadable { reason: String },
+    /// A material with `alphaMode: BLEND`: rastray draws it opaque.
+    BlendDrawnOpaque { material: String },
 }
 
 impl fmt::Display for ImportWarning {
@@ -59,10 +67,21 @@ impl fmt::Display for ImportWarning {
             ImportWarning::UnreadablePositions { primitive, reason } => {
                 write!(f, "{primitive} skipped: {reason}")
             }
-            ImportWarning::TextureIgnored { material } => write!(
+            ImportWarning::TextureUnreadable { material, reason } => write!(
                 f,
-                "{material} takes its base colour from a texture; rastray uses the base colour \
-                 factor alone"
+                "{material} is drawn without its base colour texture: {reason}"
+            ),
+            ImportWarning::NoTextureCoordinates { primitive, set } => write!(
+                f,
+                "{primitive} is drawn untextured: its material's texture reads TEXCOORD_{set}, \
+                 which it does not have"
+            ),
+            ImportWarning::ModelTextureUnreadable { reason } => {
+                write!(f, "drawn untextured: {reason}")
+            }
+            ImportWarning::BlendDrawnOpaque { material } => write!(
+                f,
+                "{material} asks for alpha blending (alphaMode BLEND); rastray draws it opaque"
             ),
             ImportWarning::MaterialLibraryNotRead {
                 reference,

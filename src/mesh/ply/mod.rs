@@ -30,7 +30,10 @@ use self::header::{Element, Header, read_header};
 use self::plan::{Plan, face_plan, skip_plan, vertex_plan};
 use super::byte_source::ByteSource;
 use super::geometry::ModelGeometry;
+use super::gltf::ImportWarning;
 use super::model_error::{Place, grew};
+use super::texture::{Appearance, Sampler, TextureBinding, load_texture};
+use crate::model_folder::{ModelFolder, ReferenceKind};
 use crate::world::MAX_TRIANGLES;
 
 /// Most vertices a PLY file may declare: three for each triangle a scene may hold.
@@ -41,9 +44,12 @@ pub const MAX_VERTICES: u64 = 3 * MAX_TRIANGLES;
 pub struct PlyModel {
     pub geometry: ModelGeometry,
     pub encoding: PlyEncoding,
-    /// The image `comment TextureFile NAME` names, as written (not read: textures are not
-    /// drawn yet).
+    /// The image `comment TextureFile NAME` names, as written.
     pub texture: Option<String>,
+    /// That image as the model's texture, read from the model's folder, when it could be read.
+    pub appearance: Appearance,
+    /// Why the named texture is not drawn (missing, outside the folder, not an image).
+    pub warnings: Vec<ImportWarning>,
 }
 
 /// Reads the PLY file at `path`: a regular file of at most [`MAX_MODEL_BYTES`](crate::input_file::MAX_MODEL_BYTES), at most
@@ -107,11 +113,43 @@ pub fn load_ply(path: &Path) -> Result<PlyModel, PlyError> {
     let geometry = collector
         .finish()
         .map_err(|problem| fail((Place::File, problem)))?;
+    let (appearance, warnings) = match &header.texture {
+        Some(name) => texture_appearance(path, name),
+        None => (Appearance::plain(), Vec::new()),
+    };
     Ok(PlyModel {
         geometry,
         encoding: header.encoding,
         texture: header.texture,
+        appearance,
+        warnings,
     })
+}
+
+/// The appearance of a model whose texture is the file `name` beside the model at `path`
+/// (sampled with repeat and trilinear filtering), or a plain one and the warning why not.
+fn texture_appearance(path: &Path, name: &str) -> (Appearance, Vec<ImportWarning>) {
+    let texture = ModelFolder::of(path)
+        .map_err(|e| format!("texture {name}: {e}"))
+        .and_then(|folder| {
+            load_texture(&folder, name, ReferenceKind::Path).map_err(|e| e.to_string())
+        });
+    match texture {
+        Ok(texture) => (
+            Appearance {
+                base_color: Some(TextureBinding {
+                    texture,
+                    sampler: Sampler::default(),
+                }),
+                ..Appearance::plain()
+            },
+            Vec::new(),
+        ),
+        Err(reason) => (
+            Appearance::plain(),
+            vec![ImportWarning::ModelTextureUnreadable { reason }],
+        ),
+    }
 }
 
 /// The vertex element's index, plan and attributes, once every element's count is known to

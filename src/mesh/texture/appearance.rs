@@ -56,6 +56,17 @@ impl Appearance {
         }
     }
 
+    /// Opaque, coloured by `texture` with the default sampler (repeat, linear) when there is one.
+    pub fn textured_by(texture: Option<&Arc<Texture>>) -> Appearance {
+        Appearance {
+            base_color: texture.map(|texture| TextureBinding {
+                texture: texture.clone(),
+                sampler: Sampler::default(),
+            }),
+            ..Appearance::plain()
+        }
+    }
+
     /// Whether nothing but the material and vertex colours decides the look.
     pub fn is_plain(&self) -> bool {
         self.base_color.is_none() && self.alpha_mode == AlphaMode::Opaque

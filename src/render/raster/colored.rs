@@ -24,6 +24,18 @@ impl ColoredObjects {
         }
     }
 
+    /// The objects of `world`, a textured object counting as coloured: what takes Gouraud's
+    /// separate specular path.
+    pub fn with_textures(world: &World) -> ColoredObjects {
+        ColoredObjects {
+            colored: world
+                .objects
+                .iter()
+                .map(|o| o.mesh.colors.is_some() || o.is_textured())
+                .collect(),
+        }
+    }
+
     /// `coloured` in the lanes whose object (`objects`) has vertex colours, `plain` in the
     /// others; one test when the eight lanes share an object, as they mostly do.
     #[inline(always)]

@@ -10,10 +10,10 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::gouraud_parts::{LitParts, SeparateSpecular};
+use super::gouraud_parts::{LitParts, SeparateSpecular, TexturedParts, TexturedSeparateSpecular};
 use super::setup::RasterScratch;
 use super::shader::VaryingColor;
-use super::varying::Varying;
+use super::varying::{NormalsColorsAndUvs, Varying};
 use super::zbuffer::draw;
 use crate::mesh::Mesh;
 use crate::render::camera::{View, Viewer};
@@ -22,6 +22,7 @@ use crate::render::prefetch;
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::shading::Lighting;
 use crate::render::simd::{Lanes8, LanesJob, V3, WIDTH, run_on_best_lanes};
+use crate::render::texturing::ObjectTextures;
 use crate::world::World;
 
 /// Renders `world` through `view` into `out` (`view.width`×`view.height` pixels).
@@ -36,6 +37,18 @@ pub fn render_gouraud(
         geometry,
         per_vertex,
     } = scratch;
+    if world.objects.iter().any(|o| o.is_textured()) {
+        let mut parts = TexturedParts {
+            parts: LitParts::new(world, view.viewer(), per_vertex),
+            uvs: NormalsColorsAndUvs::new(world),
+        };
+        let shader = TexturedSeparateSpecular {
+            plain: SeparateSpecular::new(world),
+            view,
+            textures: ObjectTextures::new(world, view),
+        };
+        return draw::<5>(geometry, world, view, progress, &mut parts, &shader, out);
+    }
     if world.objects.iter().any(|o| o.mesh.colors.is_some()) {
         let mut parts = LitParts::new(world, view.viewer(), per_vertex);
         let shader = SeparateSpecular::new(world);

@@ -12,16 +12,18 @@
 use glam::Vec3;
 
 use super::colored::ColoredObjects;
+use super::fragment_texels::fragment_texels;
 use super::fragments::Fragments;
 use super::gouraud::{light_whole, next_corners, objects_lit_whole};
 use super::shader::Shader;
-use super::varying::Varying;
+use super::varying::{NormalsColorsAndUvs, Varying};
 use crate::mesh::Mesh;
-use crate::render::camera::Viewer;
+use crate::render::camera::{View, Viewer};
 use crate::render::materials::{MaterialLanes, ObjectMaterials};
 use crate::render::prefetch;
 use crate::render::shading::Lighting;
 use crate::render::simd::{Lanes8, LanesJob, V3, WIDTH, run_on_best_lanes};
+use crate::render::texturing::ObjectTextures;
 use crate::world::World;
 
 /// The vertex stage: `D` and `S` of each vertex (or, on a mesh without colours, its lit colour
@@ -63,7 +65,8 @@ impl<'a> LitParts<'a> {
         n: V3<L>,
     ) -> (V3<L>, V3<L>) {
         let v = self.viewer.toward(p);
-        if self.world.objects[object].mesh.colors.is_some() {
+        let o = &self.world.objects[object];
+        if o.mesh.colors.is_some() || o.is_textured() {
             self.lighting
                 .shade_parts_lanes(p, n, v, material, |_, _, facing| facing)
         } else {
@@ -229,12 +232,22 @@ impl SeparateSpecular {
             albedo: world
                 .objects
                 .iter()
-                .map(|o| match o.mesh.colors {
-                    Some(_) => o.material.color,
-                    None => Vec3::ONE,
+                .map(|o| match o.mesh.colors.is_some() || o.is_textured() {
+                    true => o.material.color,
+                    false => Vec3::ONE,
                 })
                 .collect(),
-            colored: ColoredObjects::new(world),
+            colored: ColoredObjects::with_textures(world),
+        }
+    }
+
+    /// The material colours of `fragments`' objects (white where the lit colour is kept).
+    #[inline(always)]
+    fn albedo<L: Lanes8>(&self, objects: &[u32; WIDTH]) -> V3<L> {
+        if objects.iter().all(|&o| o == objects[0]) {
+            V3::splat(self.albedo[objects[0] as usize])
+        } else {
+            V3::gather(&objects.map(|o| self.albedo[o as usize]))
         }
     }
 }
@@ -243,14 +256,62 @@ impl Shader<3> for SeparateSpecular {
     #[inline(always)]
     fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 3>, row: &mut [Vec3]) {
         let objects = &fragments.object;
-        let albedo = if objects.iter().all(|&o| o == objects[0]) {
-            V3::splat(self.albedo[objects[0] as usize])
-        } else {
-            V3::gather(&objects.map(|o| self.albedo[o as usize]))
-        };
+        let albedo = self.albedo(objects);
         let [diffuse, specular, color] = fragments.varying;
         let lit = albedo.mul_elements(color).mul_elements(diffuse);
         let c = V3::new(lit.x + specular.x, lit.y + specular.y, lit.z + specular.z);
         fragments.write(self.colored.select(objects, c, diffuse), row);
+    }
+}
+
+/// The vertex stage where some mesh is textured: [`LitParts`]' `D`, `S` and colour, then the
+/// texture coordinates and texel density and the vertex normal of
+/// [`NormalsColorsAndUvs`] (the normal for the footprint's cosine, as Phong takes it).
+pub struct TexturedParts<'a> {
+    pub parts: LitParts<'a>,
+    pub uvs: NormalsColorsAndUvs<'a>,
+}
+
+impl Varying for TexturedParts<'_> {
+    fn prepare(&mut self, triangles_needed: &[usize]) {
+        self.parts.prepare(triangles_needed);
+    }
+
+    fn corners(&self, object: usize, triangles: &[u32], out: &mut Vec<[Vec3; 3]>) {
+        let start = out.len();
+        self.parts.corners(object, triangles, out);
+        let lit = out.split_off(start);
+        let mut more = Vec::with_capacity(3 * triangles.len());
+        self.uvs.corners(object, triangles, &mut more);
+        for (lit, more) in lit.chunks_exact(3).zip(more.chunks_exact(3)) {
+            out.extend_from_slice(lit);
+            out.push(more[2]);
+            out.push(more[0]);
+        }
+    }
+
+    fn prefetch(&self, object: usize, triangle: u32) {
+        self.parts.prefetch(object, triangle);
+    }
+}
+
+/// The fragment stage with textures: [`SeparateSpecular`] with the albedo also times the
+/// texture's colour on textured meshes, the level chosen as Phong chooses it.
+pub struct TexturedSeparateSpecular<'a> {
+    pub plain: SeparateSpecular,
+    pub view: &'a View,
+    pub textures: ObjectTextures<'a>,
+}
+
+impl Shader<5> for TexturedSeparateSpecular<'_> {
+    #[inline(always)]
+    fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 5>, row: &mut [Vec3]) {
+        let objects = &fragments.object;
+        let [diffuse, specular, color, uvd, normal] = fragments.varying;
+        let texels = fragment_texels(&self.textures, self.view, fragments, normal, uvd);
+        let albedo = self.plain.albedo::<L>(objects).mul_elements(texels);
+        let lit = albedo.mul_elements(color).mul_elements(diffuse);
+        let c = V3::new(lit.x + specular.x, lit.y + specular.y, lit.z + specular.z);
+        fragments.write(self.plain.colored.select(objects, c, diffuse), row);
     }
 }

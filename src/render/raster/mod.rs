@@ -4,6 +4,7 @@
 
 mod colored;
 mod coverage;
+mod fragment_texels;
 mod fragments;
 mod gouraud;
 mod gouraud_parts;

@@ -5,16 +5,18 @@
 use glam::Vec3;
 
 use super::colored::ColoredObjects;
+use super::fragment_texels::fragment_texels;
 use super::fragments::Fragments;
 use super::setup::RasterScratch;
 use super::shader::Shader;
-use super::varying::{NormalsAndColors, PerVertex};
+use super::varying::{NormalsAndColors, NormalsColorsAndUvs, PerVertex};
 use super::zbuffer::draw;
 use crate::render::camera::View;
 use crate::render::materials::{MaterialLanes, ObjectMaterials};
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::shading::Lighting;
 use crate::render::simd::{Lanes, Lanes8, V3};
+use crate::render::texturing::ObjectTextures;
 use crate::world::World;
 
 /// Renders `world` through `view` into `out` (`view.width`×`view.height` pixels).
@@ -29,17 +31,22 @@ pub fn render_phong(
     draw_normals(scratch, world, view, progress, &shader, out)
 }
 
-/// Draws with `shader`, the vertex normals as the varying, and the vertex colours as a second
-/// one where some mesh of `world` has them.
+/// Draws with `shader`, the vertex normals as the varying, the vertex colours as a second one
+/// where some mesh of `world` has them, and the texture coordinates as a third where some mesh
+/// is textured.
 fn draw_normals(
     scratch: &mut RasterScratch,
     world: &World,
     view: &View,
     progress: &Progress,
-    shader: &(impl Shader<1> + Shader<2>),
+    shader: &(impl Shader<1> + Shader<2> + Shader<3>),
     out: &mut [Vec3],
 ) -> Result<(), Cancelled> {
     let geometry = &mut scratch.geometry;
+    if world.objects.iter().any(|o| o.is_textured()) {
+        let varyings = &mut NormalsColorsAndUvs::new(world);
+        return draw::<3>(geometry, world, view, progress, varyings, shader, out);
+    }
     if world.objects.iter().any(|o| o.mesh.colors.is_some()) {
         let varyings = &mut NormalsAndColors::new(world);
         return draw::<2>(geometry, world, view, progress, varyings, shader, out);
@@ -77,6 +84,7 @@ struct PhongShader<'a> {
     lighting: Lighting<'a>,
     materials: ObjectMaterials,
     colored: ColoredObjects,
+    textures: ObjectTextures<'a>,
 }
 
 impl Shader<1> for PhongShader<'_> {
@@ -117,14 +125,7 @@ impl Shader<2> for PhongShader<'_> {
     fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 2>, row: &mut [Vec3]) {
         let mut material = self.materials.of_lanes(&fragments.object);
         material.color = self.albedo(fragments, material.color);
-        let color = self.light(
-            fragments.columns(),
-            fragments.y,
-            fragments.depth,
-            fragments.varying[0],
-            &material,
-        );
-        fragments.write(color, row);
+        self.light_fragments(fragments, &material, row);
     }
 
     const SHADES_TWO: bool = true;
@@ -153,7 +154,43 @@ impl Shader<2> for PhongShader<'_> {
     }
 }
 
+/// With the texture coordinates as the third varying: the albedo is also times the texture's
+/// colour, on textured meshes, at the level of the pixel's footprint (see
+/// [`crate::render::texturing`]); other meshes are multiplied by exactly 1.
+impl Shader<3> for PhongShader<'_> {
+    #[inline(always)]
+    fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 3>, row: &mut [Vec3]) {
+        let mut material = self.materials.of_lanes(&fragments.object);
+        let tinted = material.color.mul_elements(fragments.varying[1]);
+        let color = self
+            .colored
+            .select(&fragments.object, tinted, material.color);
+        let (normal, uvd) = (fragments.varying[0], fragments.varying[2]);
+        let texels = fragment_texels(&self.textures, self.view, fragments, normal, uvd);
+        material.color = color.mul_elements(texels);
+        self.light_fragments(fragments, &material, row);
+    }
+}
+
 impl<'a> PhongShader<'a> {
+    /// Lights `fragments` (the normal their first varying) with `material` into `row`.
+    #[inline(always)]
+    fn light_fragments<L: Lanes8, const K: usize>(
+        &self,
+        fragments: &Fragments<L, K>,
+        material: &MaterialLanes<L>,
+        row: &mut [Vec3],
+    ) {
+        let color = self.light(
+            fragments.columns(),
+            fragments.y,
+            fragments.depth,
+            fragments.varying[0],
+            material,
+        );
+        fragments.write(color, row);
+    }
+
     /// Lights `world`'s materials with its lights, seen through `view`.
     fn new(world: &'a World, view: &'a View) -> PhongShader<'a> {
         PhongShader {
@@ -161,6 +198,7 @@ impl<'a> PhongShader<'a> {
             lighting: Lighting::new(world),
             materials: ObjectMaterials::new(world),
             colored: ColoredObjects::new(world),
+            textures: ObjectTextures::new(world, view),
         }
     }
 

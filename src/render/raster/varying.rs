@@ -4,6 +4,7 @@
 use glam::Vec3;
 
 use crate::render::prefetch;
+use crate::render::texturing::ObjectTextures;
 use crate::world::World;
 
 /// The varying of every vertex of a world's meshes.
@@ -116,5 +117,46 @@ impl Varying for NormalsAndColors<'_> {
 
     fn prefetch(&self, object: usize, triangle: u32) {
         self.normals.prefetch(object, triangle);
+    }
+}
+
+/// Three values per vertex: the normals and colours of [`NormalsAndColors`], then the texture
+/// coordinates (u, v) with the triangle's texel density as the third component (the same at
+/// its three corners; zeros on an untextured mesh). Phong shading's varyings where some mesh
+/// is textured.
+pub struct NormalsColorsAndUvs<'a> {
+    normals_and_colors: NormalsAndColors<'a>,
+    world: &'a World,
+    textures: ObjectTextures<'a>,
+}
+
+impl<'a> NormalsColorsAndUvs<'a> {
+    /// The normals, colours and texture coordinates of `world`'s meshes.
+    pub fn new(world: &'a World) -> NormalsColorsAndUvs<'a> {
+        NormalsColorsAndUvs {
+            normals_and_colors: NormalsAndColors::new(world),
+            world,
+            textures: ObjectTextures::with_spread(world, 0.0),
+        }
+    }
+}
+
+impl Varying for NormalsColorsAndUvs<'_> {
+    fn corners(&self, object: usize, triangles: &[u32], out: &mut Vec<[Vec3; 3]>) {
+        let start = out.len();
+        self.normals_and_colors.corners(object, triangles, out);
+        let two = out.split_off(start);
+        let mesh = &self.world.objects[object].mesh;
+        for (&t, pair) in triangles.iter().zip(two.chunks_exact(2)) {
+            out.extend_from_slice(pair);
+            out.push(match self.textures.corners(object, mesh, t) {
+                Some((uv, density)) => uv.map(|uv| uv.extend(density)),
+                None => [Vec3::ZERO; 3],
+            });
+        }
+    }
+
+    fn prefetch(&self, object: usize, triangle: u32) {
+        self.normals_and_colors.prefetch(object, triangle);
     }
 }

@@ -31,6 +31,7 @@ use crate::render::progress::{Cancelled, Progress};
 use crate::render::shading::Lighting;
 use crate::render::simd::{F32x8, V3, WIDTH};
 use crate::render::stats::RayCounts;
+use crate::render::texturing::ObjectTextures;
 use crate::scene::Light;
 use crate::world::World;
 
@@ -61,7 +62,8 @@ pub fn trace_into(
     progress: &Progress,
     out: &mut [Vec3],
 ) -> Result<RayCounts, Cancelled> {
-    let tracer = Tracer::new(accel, world, options);
+    let mut tracer = Tracer::new(accel, world, options);
+    tracer.textures = ObjectTextures::new(world, view);
     let width = view.width as usize;
     debug_assert_eq!(out.len(), width * view.height as usize);
     out.par_chunks_mut(width * TILE_ROWS)
@@ -109,6 +111,8 @@ pub(super) struct Tracer<'a> {
     /// Whether any object's mesh has vertex colours: only then is the colour at a hit looked
     /// up, so that worlds without them trace as they did before colours existed.
     colored: bool,
+    /// The objects' textures and the footprint of a pixel's ray cone.
+    pub(super) textures: ObjectTextures<'a>,
     shadows: bool,
     max_depth: u32,
 }
@@ -147,6 +151,7 @@ impl<'a> Tracer<'a> {
             lighting: Lighting::new(world),
             materials: ObjectMaterials::new(world),
             colored: world.objects.iter().any(|o| o.mesh.colors.is_some()),
+            textures: ObjectTextures::with_spread(world, 0.0),
             shadows: options.shadows,
             max_depth: options
                 .max_depth
@@ -276,11 +281,12 @@ impl<'a> Tracer<'a> {
         let x = F32x8::from(pixel.map(|(i, _)| i as f32 + 0.5));
         let y = F32x8::from(pixel.map(|(_, j)| j as f32 + 0.5));
         stats.primary += real.count_ones() as u64;
-        self.trace_lanes(&primary_packet(view, x, y), real, 0, stats)
+        self.trace_lanes(&primary_packet(view, x, y), real, 0, &[0.0; WIDTH], stats)
     }
 
     /// Colour seen along each ray of `packet` whose bit is set in `lanes`, the others left as
-    /// the background; `depth` counts reflections so far. Each lane gets the bits its ray would
+    /// the background; `depth` counts reflections so far, and `path` is how far each ray's
+    /// cone has come before its origin (for the texture's level of detail). Each lane gets the bits its ray would
     /// get alone from [`Tracer::trace`].
     ///
     /// Inlined into the primary packet's loop, as the primary body was before reflected packets
@@ -292,6 +298,7 @@ impl<'a> Tracer<'a> {
         packet: &RayPacket,
         lanes: u32,
         depth: u32,
+        path: &[f32; WIDTH],
         stats: &mut RayCounts,
     ) -> [Vec3; WIDTH] {
         let dir = packet.dir;
@@ -337,6 +344,25 @@ impl<'a> Tracer<'a> {
             });
             material.color = material.color.mul_elements(V3::gather(&colors));
         }
+        let mut reached = *path;
+        if self.textures.any {
+            let t = hits.t.to_array();
+            reached = std::array::from_fn(|k| path[k] + t[source(k)]);
+            let texels: [Vec3; WIDTH] = std::array::from_fn(|k| {
+                let s = source(k);
+                let (object, triangle) = (objects[k], triangles[s]);
+                self.texture_at(
+                    object,
+                    triangle,
+                    u[s],
+                    v[s],
+                    reached[k],
+                    dirs[k],
+                    &surfaces[k],
+                )
+            });
+            material.color = material.color.mul_elements(V3::gather(&texels));
+        }
         let p = V3::gather(&surfaces.each_ref().map(|s| s.p));
         let n = V3::gather(&surfaces.each_ref().map(|s| s.n));
         let origins = V3::gather(&surfaces.each_ref().map(|s| s.origin));
@@ -351,7 +377,9 @@ impl<'a> Tracer<'a> {
                 wanted & !self.accel.occluded_packet(origins, light.position, wanted)
             })
             .to_vec3s();
-        let mirrored = self.reflections(&objects, &surfaces, &dirs, hit_lanes, depth, stats);
+        let mirrored = self.reflections(
+            &objects, &surfaces, &dirs, hit_lanes, depth, &reached, stats,
+        );
         std::array::from_fn(|k| {
             if hit_lanes & 1 << k == 0 {
                 return self.world.background;
@@ -363,6 +391,7 @@ impl<'a> Tracer<'a> {
     /// What the mirrors hit by the lanes of `hit_lanes` add to each lane (zero where the
     /// object does not reflect, or at the depth limit): Kr times the colour of the reflected
     /// ray. The reflected rays go as a packet when enough lanes cast one, else one by one.
+    #[allow(clippy::too_many_arguments)]
     fn reflections(
         &self,
         objects: &[u32; WIDTH],
@@ -370,6 +399,7 @@ impl<'a> Tracer<'a> {
         dirs: &[Vec3; WIDTH],
         hit_lanes: u32,
         depth: u32,
+        path: &[f32; WIDTH],
         stats: &mut RayCounts,
     ) -> [Vec3; WIDTH] {
         let mut added = [Vec3::ZERO; WIDTH];
@@ -392,7 +422,7 @@ impl<'a> Tracer<'a> {
         });
         if mirrors.count_ones() < MIN_REFLECTION_PACKET {
             for k in (0..WIDTH).filter(|k| mirrors & 1 << k != 0) {
-                added[k] = coefficient(k) * self.trace(&rays[k], 0.0, depth + 1, stats);
+                added[k] = coefficient(k) * self.trace(&rays[k], 0.0, depth + 1, path[k], stats);
             }
             return added;
         }
@@ -401,7 +431,7 @@ impl<'a> Tracer<'a> {
             V3::gather(&rays.each_ref().map(|r| Vec3::from(r.dir))),
             F32x8::ZERO,
         );
-        let seen = self.trace_reflected_lanes(&packet, mirrors, depth + 1, stats);
+        let seen = self.trace_reflected_lanes(&packet, mirrors, depth + 1, path, stats);
         for k in (0..WIDTH).filter(|k| mirrors & 1 << k != 0) {
             added[k] = coefficient(k) * seen[k];
         }
@@ -416,13 +446,22 @@ impl<'a> Tracer<'a> {
         packet: &RayPacket,
         lanes: u32,
         depth: u32,
+        path: &[f32; WIDTH],
         stats: &mut RayCounts,
     ) -> [Vec3; WIDTH] {
-        self.trace_lanes(packet, lanes, depth, stats)
+        self.trace_lanes(packet, lanes, depth, path, stats)
     }
 
-    /// Colour seen along `ray` beyond `t_min`; `depth` counts reflections so far.
-    pub(super) fn trace(&self, ray: &Ray, t_min: f32, depth: u32, stats: &mut RayCounts) -> Vec3 {
+    /// Colour seen along `ray` beyond `t_min`; `depth` counts reflections so far, and `path` is
+    /// how far the ray's cone has come before its origin.
+    pub(super) fn trace(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        depth: u32,
+        path: f32,
+        stats: &mut RayCounts,
+    ) -> Vec3 {
         let Some(hit) = self.accel.intersect(ray, t_min, f32::INFINITY) else {
             return self.world.background;
         };
@@ -433,10 +472,15 @@ impl<'a> Tracer<'a> {
             let color = self.vertex_color(hit.object, hit.triangle, hit.u, hit.v);
             material.color = material.color.mul_elements(color.into());
         }
+        let path = path + hit.t;
+        if self.textures.any {
+            let texel = self.texture_at(hit.object, hit.triangle, hit.u, hit.v, path, d, &s);
+            material.color = material.color.mul_elements(texel.into());
+        }
         let lit = self.lighting.shade(s.p, s.n, -d, &material, |_, light| {
             self.light_reaches(s.origin, light, stats)
         });
-        lit + self.reflection(hit.object, &s, d, depth, stats)
+        lit + self.reflection(hit.object, &s, d, depth, path, stats)
     }
 
     /// Whether `light` reaches a point whose secondary rays start at `origin`: always without
@@ -457,6 +501,7 @@ impl<'a> Tracer<'a> {
         s: &Surface,
         d: Vec3,
         depth: u32,
+        path: f32,
         stats: &mut RayCounts,
     ) -> Vec3 {
         let reflection = self.world.objects[object as usize].material.reflection;
@@ -464,7 +509,33 @@ impl<'a> Tracer<'a> {
             return Vec3::ZERO;
         }
         stats.reflection += 1;
-        reflection * self.trace(&mirror_ray(s, d), 0.0, depth + 1, stats)
+        reflection * self.trace(&mirror_ray(s, d), 0.0, depth + 1, path, stats)
+    }
+
+    /// The texture colour (RGB, white on an untextured object) at barycentrics (u, v) of
+    /// triangle `triangle` of object `object`, hit at path length `path` along `d` on surface
+    /// `s`: the footprint of the ray's cone there chooses the level.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn texture_at(
+        &self,
+        object: u32,
+        triangle: u32,
+        u: f32,
+        v: f32,
+        path: f32,
+        d: Vec3,
+        s: &Surface,
+    ) -> Vec3 {
+        let mesh = self.mesh(object);
+        let Some((uv, density)) = self.textures.corners(object as usize, mesh, triangle) else {
+            return Vec3::ONE;
+        };
+        let at = uv[0] * (1.0 - u - v) + uv[1] * u + uv[2] * v;
+        let cos = s.n.dot(d);
+        self.textures
+            .sample(object as usize, at, density, path, cos)
+            .truncate()
     }
 }
 

@@ -90,12 +90,12 @@ proptest! {
             F32x8::ZERO,
         );
         let mut together = RayCounts::default();
-        let colours = tracer.trace_lanes(&packet, lanes, 0, &mut together);
+        let colours = tracer.trace_lanes(&packet, lanes, 0, &[0.0; WIDTH], &mut together);
 
         let mut alone = RayCounts::default();
         for (k, &(origin, dir)) in rays.iter().enumerate() {
             let expected = if lanes & 1 << k != 0 {
-                tracer.trace(&Ray::new(origin, dir), 0.0, 0, &mut alone)
+                tracer.trace(&Ray::new(origin, dir), 0.0, 0, 0.0, &mut alone)
             } else {
                 world.background
             };
@@ -122,6 +122,7 @@ fn the_hall_of_mirrors_reflects_rays_more_than_once() {
         &RayPacket::new(origins, dirs, F32x8::ZERO),
         0xff,
         0,
+        &[0.0; WIDTH],
         &mut counts,
     );
     assert_eq!(

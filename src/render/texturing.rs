@@ -1,0 +1,134 @@
+//! Textures as all three algorithms read them: the texture coordinates at a point and the level
+//! of detail from the pixel's footprint there, worked out by one formula so that Phong and the
+//! ray tracer choose the same level.
+//!
+//! The footprint is a ray cone: a pixel spans the angle `spread` = 2·tan(fov/2) / image height
+//! (radians, small), so at distance `d` along its ray (the whole path, reflections included:
+//! a mirror widens the cone as far again) it is `spread·d` wide, and on a surface whose normal
+//! makes cosine `cos` with the ray it covers `(spread·d)² / |cos|` of area. A triangle maps
+//! world area to texture area by its texel density (UV area / world area), so the footprint
+//! covers `texels × density × area` texels of level 0, and the level is half the base-2
+//! logarithm of that. An orthographic view's rays are parallel: its pixel is
+//! `2·half_height / image height` wide at every distance (`base`, world units), and `spread` is 0.
+//! The Z-buffer takes the depth and normal of its pixel, the ray tracer
+//! those of its hit: the same numbers, so the same level.
+
+use glam::{Vec2, Vec3, Vec4};
+
+use crate::mesh::Mesh;
+use crate::mesh::texture::TextureBinding;
+use crate::render::camera::View;
+use crate::world::World;
+
+/// Steepest incidence the footprint is widened for: at grazing angles beyond it (cosine below
+/// 1/64) the level stops growing, as a GPU's anisotropy limit does.
+const MIN_COSINE: f32 = 1.0 / 64.0;
+
+/// The textures of a world's objects and the cone spread of the view.
+pub struct ObjectTextures<'a> {
+    /// Per object, its texture and its mesh's texture coordinates, when it is drawn textured.
+    textured: Vec<Option<(&'a TextureBinding, &'a [Vec2])>>,
+    /// Whether any object is textured: worlds without textures skip every lookup.
+    pub any: bool,
+    /// The angle a pixel spans, radians.
+    spread: f32,
+    /// The width a pixel spans at distance 0, world units (orthographic views; 0 in perspective).
+    base: f32,
+}
+
+impl<'a> ObjectTextures<'a> {
+    /// The textures of `world`'s objects, seen through `view`.
+    pub fn new(world: &'a World, view: &View) -> ObjectTextures<'a> {
+        let pixel = 2.0 * view.half_height / view.image_height as f32;
+        if view.orthographic {
+            ObjectTextures {
+                base: pixel,
+                ..ObjectTextures::with_spread(world, 0.0)
+            }
+        } else {
+            ObjectTextures::with_spread(world, pixel)
+        }
+    }
+
+    /// The textures of `world`'s objects, a pixel spanning `spread` radians (0: every lookup
+    /// reads the finest level).
+    pub fn with_spread(world: &'a World, spread: f32) -> ObjectTextures<'a> {
+        let textured: Vec<_> = world
+            .objects
+            .iter()
+            .map(|o| match (&o.appearance.base_color, &o.mesh.uvs) {
+                (Some(binding), Some(uvs)) => Some((binding, &uvs[..])),
+                _ => None,
+            })
+            .collect();
+        ObjectTextures {
+            any: textured.iter().any(Option::is_some),
+            textured,
+            spread,
+            base: 0.0,
+        }
+    }
+
+    /// Whether object `object` is drawn textured.
+    #[inline]
+    pub fn is_textured(&self, object: usize) -> bool {
+        self.textured[object].is_some()
+    }
+
+    /// The texture coordinates at the corners of triangle `triangle` of object `object` (whose
+    /// mesh is `mesh`), and the triangle's texel density; `None` for an untextured object.
+    #[inline]
+    pub fn corners(&self, object: usize, mesh: &Mesh, triangle: u32) -> Option<([Vec2; 3], f32)> {
+        let (_, uvs) = self.textured[object]?;
+        let abc = mesh.triangles[triangle as usize];
+        let uv = abc.map(|i| uvs[i as usize]);
+        let p = abc.map(|i| mesh.positions[i as usize]);
+        Some((uv, texel_density(p, uv)))
+    }
+
+    /// The linear RGBA texture colour of object `object` (textured) at `uv`, on a triangle of
+    /// texel density `density`, seen at path length `distance` along a ray whose direction
+    /// makes cosine `cos` with the surface normal.
+    #[inline]
+    pub fn sample(&self, object: usize, uv: Vec2, density: f32, distance: f32, cos: f32) -> Vec4 {
+        let Some((binding, _)) = self.textured[object] else {
+            return Vec4::ONE;
+        };
+        let texture = &binding.texture;
+        let (w, h) = texture.size();
+        let width = self.base + self.spread * distance;
+        let texels = (w as f32 * h as f32) * density * width * width / cos.abs().max(MIN_COSINE);
+        let lod = 0.5 * texels.log2();
+        binding.sampler.sample(texture, uv, lod)
+    }
+}
+
+/// The ratio of a triangle's area in texture space (UV units²) to its area in the world (world
+/// units²), for corners at `p` with coordinates `uv`; 0 for a triangle of no world area.
+#[inline]
+pub fn texel_density(p: [Vec3; 3], uv: [Vec2; 3]) -> f32 {
+    let world = (p[1] - p[0]).cross(p[2] - p[0]).length();
+    let texture = (uv[1] - uv[0]).perp_dot(uv[2] - uv[0]).abs();
+    if world > 0.0 && world.is_finite() {
+        texture / world
+    } else {
+        0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn density_is_uv_area_over_world_area() {
+        let p = [
+            Vec3::ZERO,
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 2.0, 0.0),
+        ];
+        let uv = [Vec2::ZERO, Vec2::X, Vec2::Y];
+        assert_eq!(texel_density(p, uv), 0.25);
+        assert_eq!(texel_density([Vec3::ZERO; 3], uv), 0.0);
+    }
+}
