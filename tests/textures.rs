@@ -91,6 +91,17 @@ fn quad_ply(texture: &str) -> String {
     )
 }
 
+/// An OBJ of the same quad with its MTL library, whose material is white and textured by
+/// `texture` (`map_Kd`), with OBJ's UVs ((0, 0) the image's bottom-left): (OBJ, MTL).
+fn quad_obj(texture: &str) -> (String, String) {
+    (
+        "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n\
+         vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl letter\nf 1/1 2/2 3/3 4/4\n"
+            .to_string(),
+        format!("newmtl letter\nKd 1 1 1\nKs 0 0 0\nmap_Kd {texture}\n"),
+    )
+}
+
 /// The object of `model` with `rest` (its keys) lit by ambient 1 alone, seen square-on from where the quad just fills a 60° view: pixel
 /// (i, j)'s centre meets texel (i, j)'s centre.
 fn scene_of(model: &Path, rest: &str) -> rastray::Scene {
@@ -128,7 +139,7 @@ fn png_bytes(image: &image::RgbImage) -> Vec<u8> {
 }
 
 #[test]
-fn a_textured_quad_renders_as_its_image_upright_from_gltf_and_ply_in_every_algorithm() {
+fn a_textured_quad_renders_as_its_image_upright_from_gltf_ply_and_obj_in_every_algorithm() {
     let image = letter_image();
     let png = png_bytes(&image);
     write("quad", "letter.png", &png);
@@ -141,8 +152,13 @@ fn a_textured_quad_renders_as_its_image_upright_from_gltf_and_ply_in_every_algor
     );
     let gltf = write("quad", "quad.gltf", gltf.as_bytes());
     let ply = write("quad", "quad.ply", quad_ply("letter.png").as_bytes());
-    // glTF's material is white; a PLY has none, so the object's is made white.
-    for (model, material) in [(gltf, ""), (ply, "material = { color = [1.0, 1.0, 1.0] }")] {
+    let (obj, mtl) = quad_obj("letter.png");
+    let obj = write("quad", "quad.obj", obj.as_bytes());
+    write("quad", "quad.mtl", mtl.as_bytes());
+    // glTF's and the MTL's materials are white; a PLY has none, so the object's is made white
+    // and the file's texture kept (`materials = "file"`).
+    let white = "material = { color = [1.0, 1.0, 1.0] }\nmaterials = \"file\"";
+    for (model, material) in [(gltf, ""), (ply, white), (obj, "")] {
         let scene = scene_of(&model, material);
         for algorithm in ALGORITHMS {
             let got = render(&scene, algorithm, SIDE, 1).to_srgb8();
@@ -174,21 +190,26 @@ fn sample_model(name: &str) -> PathBuf {
 
 #[test]
 fn phong_and_the_ray_tracer_agree_on_the_textured_duck_and_box() {
-    for (name, distance) in [("Duck.glb", 3.0), ("BoxTextured.glb", 3.0)] {
+    // In perspective and in an orthographic view, where the footprint is one fixed width.
+    let projections = ["fov = 40.0", "projection = \"orthographic\"\nheight = 2.5"];
+    for (name, projection) in ["Duck.glb", "BoxTextured.glb"]
+        .into_iter()
+        .flat_map(|name| projections.map(|p| (name, p)))
+    {
         let model = sample_model(name);
         let scene = common::scene(&format!(
             "background = [0.0, 0.0, 0.0]\nambient = 0.2\n[[light]]\nposition = [2.0, 3.0, 4.0]\n\
-             intensity = 0.8\n[camera]\nposition = [1.2, 1.0, {distance}]\n\
-             target = [0.0, 0.0, 0.0]\nfov = 40.0\n[[object]]\ntype = \"mesh\"\npath = {:?}\n",
+             intensity = 0.8\n[camera]\nposition = [1.2, 1.0, 3.0]\n\
+             target = [0.0, 0.0, 0.0]\n{projection}\n[[object]]\ntype = \"mesh\"\npath = {:?}\n",
             model.display().to_string()
         ));
         let phong = render(&scene, Algorithm::Phong, 160, 1).to_srgb8();
         let ray = render(&scene, Algorithm::Ray, 160, 1).to_srgb8();
         let psnr = common::psnr(&phong, &ray);
-        eprintln!("{name}: Phong against ray tracing {psnr:.1} dB");
+        eprintln!("{name} ({projection}): Phong against ray tracing {psnr:.1} dB");
         assert!(
             psnr >= 40.0,
-            "{name}: Phong against ray tracing {psnr:.1} dB"
+            "{name} ({projection}): Phong against ray tracing {psnr:.1} dB"
         );
     }
 }

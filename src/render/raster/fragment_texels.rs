@@ -20,9 +20,14 @@ pub fn fragment_texels<L: Lanes8, const K: usize>(
     uvd: V3<L>,
 ) -> V3<L> {
     let x = fragments.columns() + L::splat(0.5);
-    let rays = view
-        .pixel_direction(x, L::splat(fragments.y as f32 + 0.5))
-        .to_vec3s();
+    // Each fragment's ray: through its pixel from the eye, or along the view direction for
+    // every pixel of an orthographic view.
+    let rays = if view.orthographic {
+        [view.forward; WIDTH]
+    } else {
+        view.pixel_direction(x, L::splat(fragments.y as f32 + 0.5))
+            .to_vec3s()
+    };
     let depth = fragments.depth.to_array();
     let normals = normal.normalize_or_zero().to_vec3s();
     let uvd = uvd.to_vec3s();
