@@ -53,6 +53,10 @@ fn the_newest_request_wins() {
     let mut seen = Vec::new();
     loop {
         let reply = rx.recv_timeout(PATIENCE).expect("the worker answers");
+        // A world's bounds come with its first build, before any frame: not a frame.
+        if let RenderReply::Bounds { .. } = reply {
+            continue;
+        }
         let RenderReply::Shot { id, image, .. } = reply else {
             panic!("unexpected failure: {reply:?}")
         };
