@@ -118,6 +118,29 @@ fn an_orthographic_scene_camera_agrees_between_the_zbuffer_and_the_ray_tracer() 
 }
 
 #[test]
+fn info_gives_an_orthographic_camera_its_height_and_a_perspective_one_its_fov() {
+    let dir = tempfile::tempdir().unwrap();
+    let ortho = dir.path().join("ortho.toml");
+    let text = CUBE.replace(
+        "fov = 40.0",
+        "fov = 40.0\nprojection = \"orthographic\"\nheight = 3.0",
+    );
+    std::fs::write(&ortho, text).unwrap();
+    let shown = |path: &Path| {
+        let o = succeeds(&["info", path.to_str().unwrap()], dir.path());
+        let text = String::from_utf8_lossy(&o.stdout).to_string();
+        text.lines()
+            .find(|l| l.starts_with("camera"))
+            .unwrap()
+            .to_string()
+    };
+    let line = shown(&ortho);
+    assert!(line.ends_with("orthographic  height 3"), "{line}");
+    let line = shown(&cube(dir.path()));
+    assert!(line.ends_with("fov 40°"), "{line}");
+}
+
+#[test]
 fn iso_shows_three_faces() {
     let dir = tempfile::tempdir().unwrap();
     // A far light and no highlight: each face lit evenly.

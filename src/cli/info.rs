@@ -16,12 +16,18 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
     super::print_warnings(&scene, world);
     outln!("{}", Escaped(&path.display().to_string()));
     let c = &scene.camera;
+    // How much the view shows: its angle in perspective, its world height in orthographic.
+    let extent = match (c.projection, c.height) {
+        (rastray::scene::Projection::Orthographic, Some(height)) => {
+            format!("orthographic  height {height}")
+        }
+        _ => format!("fov {}°", c.fov),
+    };
     outln!(
-        "camera   position {}  target {}  up {}  fov {}°",
+        "camera   position {}  target {}  up {}  {extent}",
         fmt_vec(c.position),
         fmt_vec(c.target),
         fmt_vec(c.up),
-        c.fov
     );
     outln!(
         "ambient  {}   background {}   max_depth {}",
