@@ -206,3 +206,17 @@ fn m_cycles_the_display_modes_and_the_status_bar_names_them() {
         "{r} {g} {b}"
     );
 }
+
+#[test]
+fn the_selected_objects_measurements_show_under_its_properties() {
+    // The default scene's cube is 1.6 on a side: closed, volume 1.6³ = 4.096, area 6 × 2.56,
+    // and its properties pane lists that over the editable values.
+    let (_, buf) = screen_after(Item::Object(2), "");
+    let text = snapshot(&buf);
+    assert!(text.contains("closed · volume 4.096"), "{text}");
+    assert!(text.contains("area 15.360"), "{text}");
+    assert!(text.contains("non-manifold 0 · degenerate 0"), "{text}");
+    // The floor, 14 × 0.5 × 10: 70 cubic units.
+    let (_, buf) = screen_after(Item::Object(0), "");
+    assert!(snapshot(&buf).contains("volume 70.000"), "{}", snapshot(&buf));
+}

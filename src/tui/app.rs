@@ -51,6 +51,8 @@ pub struct Previews {
     pub triangles: Option<usize>,
     /// What the overlays and the `uv` mode of the last request measured.
     pub measures: Option<crate::tui::worker::Measures>,
+    /// The last scene object measured and its measurements (world units), for the properties.
+    pub shape: Option<(usize, crate::mesh::Measurements)>,
     /// The last exact frame of each slot: the main preview, then the compare panes.
     motion: [MotionFilter; 4],
 }

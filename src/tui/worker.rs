@@ -8,6 +8,7 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 
 use super::preview::PreviewImage;
 use crate::World;
+use crate::mesh::{Measurements, measure};
 use crate::render::{
     Algorithm, DisplayMode, Frame, Overlays, Progress, RenderError, RenderOptions, Renderer,
     ground_grid, objects_without_uvs, overlay_bounds,
@@ -105,7 +106,19 @@ pub enum RenderReply {
         id: u64,
         bounds: Option<(glam::Vec3, glam::Vec3)>,
     },
+    /// The size, area, closure and volume of the selected scene object `object` (all its
+    /// parts, welded, world units), sent when the selection or the world changes and the
+    /// object has at most [`MEASURED_TRIANGLES`] triangles.
+    Shape {
+        id: u64,
+        object: usize,
+        measurements: Measurements,
+    },
 }
+
+/// Most triangles the worker measures for the properties pane: welding is about 0.1 s per
+/// million triangles, and a bigger selection would hold back the next frame after every edit.
+pub const MEASURED_TRIANGLES: usize = 2_000_000;
 
 impl RenderReply {
     /// The request this reply answers.
@@ -115,7 +128,8 @@ impl RenderReply {
             | RenderReply::Failed { id, .. }
             | RenderReply::Measured { id, .. }
             | RenderReply::Warned { id, .. }
-            | RenderReply::Bounds { id, .. } => *id,
+            | RenderReply::Bounds { id, .. }
+            | RenderReply::Shape { id, .. } => *id,
         }
     }
 }
@@ -171,6 +185,8 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
     let mut frame = Frame::default();
     // The warnings of the last world built.
     let mut warned: Vec<Warning> = Vec::new();
+    // The world generation and scene object last measured for the properties pane.
+    let mut measured: Option<(u64, usize)> = None;
     while let Ok(mut request) = rx.recv() {
         while let Ok(newer) = rx.try_recv() {
             request = newer;
@@ -214,6 +230,24 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
         let selected = display
             .selected_object
             .and_then(|object| world_objects_of(&sources, object));
+        if let (Some(object), Some((first, end))) = (display.selected_object, selected)
+            && measured != Some((generation, object))
+        {
+            measured = Some((generation, object));
+            let parts: Vec<(&[glam::Vec3], &[[u32; 3]])> = current.objects
+                [first as usize..end as usize]
+                .iter()
+                .map(|o| (&o.mesh.positions[..], &o.mesh.triangles[..]))
+                .collect();
+            let triangles: usize = parts.iter().map(|(_, t)| t.len()).sum();
+            if triangles <= MEASURED_TRIANGLES {
+                reply(RenderReply::Shape {
+                    id: request.id,
+                    object,
+                    measurements: measure(&parts),
+                });
+            }
+        }
         // The outline is the selection's: with no object selected there is none to draw.
         let overlays = Overlays {
             selected,

@@ -245,6 +245,11 @@ fn rendered(app: &mut App, reply: RenderReply) {
         }
         RenderReply::Failed { message, .. } => app.error(message),
         RenderReply::Measured { measures, .. } => app.previews.measures = Some(measures),
+        RenderReply::Shape {
+            object,
+            measurements,
+            ..
+        } => app.previews.shape = Some((object, measurements)),
         RenderReply::Warned { warnings, .. } => {
             let new: Vec<_> = warnings
                 .iter()

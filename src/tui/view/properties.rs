@@ -9,7 +9,7 @@ use super::pane;
 use crate::tui::app::App;
 use crate::tui::fields::Part;
 use crate::tui::mode::Mode;
-use crate::tui::selection::Focus;
+use crate::tui::selection::{self, Focus};
 use crate::tui::theme;
 
 /// Columns a label takes where there is room, before the space that separates it from its value.
@@ -59,6 +59,10 @@ impl Widget for Properties<'_> {
                 }
             })
             .collect();
+        // The measurements lead, read-only, so a short pane still shows them.
+        let measured = measurement_lines(app);
+        let first_field = measured.len();
+        let items = [measured, items].concat();
         let highlight = if focused {
             theme::SELECTED
         } else {
@@ -68,9 +72,38 @@ impl Widget for Properties<'_> {
             .block(pane("Properties", focused))
             .highlight_style(highlight)
             .highlight_symbol("▶");
-        let mut state = ListState::default().with_selected(Some(app.field()));
+        let mut state = ListState::default().with_selected(Some(first_field + app.field()));
         StatefulWidget::render(list, area, buf, &mut state);
     }
+}
+
+/// Read-only lines over the selected object's properties: its size, area, closure and volume
+/// as the worker last measured them (world units); none for other items or before a measure.
+fn measurement_lines(app: &App) -> Vec<ListItem<'static>> {
+    let (selection::Item::Object(i), Some((object, m))) = (app.item(), &app.previews.shape) else {
+        return Vec::new();
+    };
+    if i != *object {
+        return Vec::new();
+    }
+    let size = m.size();
+    let solid = match m.volume {
+        Some(volume) => format!("{} · volume {volume:.3}", m.closure()),
+        None => m.closure(),
+    };
+    let lines = [
+        format!("size {:.3} × {:.3} × {:.3}", size.x, size.y, size.z),
+        format!("area {:.3}", m.area),
+        solid,
+        format!(
+            "non-manifold {} · degenerate {}",
+            m.non_manifold_edges, m.degenerate_triangles
+        ),
+    ];
+    lines
+        .into_iter()
+        .map(|text| ListItem::new(Line::styled(format!(" {text}"), theme::LABEL)))
+        .collect()
 }
 
 /// Columns for the labels in a properties pane `pane_width` wide (borders included): 15 (the
