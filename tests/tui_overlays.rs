@@ -218,5 +218,9 @@ fn the_selected_objects_measurements_show_under_its_properties() {
     assert!(text.contains("non-manifold 0 · degenerate 0"), "{text}");
     // The floor, 14 × 0.5 × 10: 70 cubic units.
     let (_, buf) = screen_after(Item::Object(0), "");
-    assert!(snapshot(&buf).contains("volume 70.000"), "{}", snapshot(&buf));
+    assert!(
+        snapshot(&buf).contains("volume 70.000"),
+        "{}",
+        snapshot(&buf)
+    );
 }
