@@ -441,15 +441,21 @@ mod tests {
     use super::*;
     use crate::scene::{ShapeKind, default_scene};
 
-    #[test]
-    fn a_meshs_up_axis_steps_through_the_six_and_takes_a_typed_name() {
+    /// The default scene with a mesh object of `path` added last, and that object's item.
+    fn default_scene_with_mesh(path: &str) -> (Scene, Item) {
         let mut scene = default_scene();
         scene.objects.push(Object::new(Shape::new(
             ShapeKind::Mesh,
             glam::Vec3::ZERO,
-            "part.stl".into(),
+            path.into(),
         )));
         let item = Item::Object(scene.objects.len() - 1);
+        (scene, item)
+    }
+
+    #[test]
+    fn a_meshs_up_axis_steps_through_the_six_and_takes_a_typed_name() {
+        let (scene, item) = default_scene_with_mesh("part.stl");
         let up = |scene: &Scene| Part::of(scene, item).unwrap().value(Key::Up);
         assert_eq!(up(&scene), Some(Value::Text("y".into())));
         let once = stepped(&scene, item, Key::Up, 1).unwrap();
@@ -472,13 +478,7 @@ mod tests {
 
     #[test]
     fn a_meshs_materials_toggle_between_file_and_object_and_take_a_typed_name() {
-        let mut scene = default_scene();
-        scene.objects.push(Object::new(Shape::new(
-            ShapeKind::Mesh,
-            glam::Vec3::ZERO,
-            "chair.obj".into(),
-        )));
-        let item = Item::Object(scene.objects.len() - 1);
+        let (scene, item) = default_scene_with_mesh("chair.obj");
         let source = |scene: &Scene| Part::of(scene, item).unwrap().value(Key::Materials);
         assert_eq!(source(&scene), Some(Value::Text("file".into())));
         let toggled = stepped(&scene, item, Key::Materials, 1).unwrap();

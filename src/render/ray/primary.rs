@@ -5,7 +5,7 @@
 use rayon::prelude::*;
 
 use super::accel::SceneAccel;
-use super::packet::RayPacket;
+use super::packet::{PacketHits, RayPacket};
 use crate::render::camera::{NEAR, View};
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::simd::{F32x8, V3, WIDTH};
@@ -31,26 +31,12 @@ pub fn primary_coverage(
     progress: &Progress,
     covered: &mut [f32],
 ) -> Result<(), Cancelled> {
-    let width = view.width as usize;
-    debug_assert_eq!(covered.len(), width * view.height as usize);
-    covered
-        .par_chunks_mut(width)
-        .enumerate()
-        .try_for_each(|(y, row)| {
-            progress.check()?;
-            let y = F32x8::splat(y as f32 + 0.5);
-            for (left, out) in (0..width).step_by(WIDTH).zip(row.chunks_mut(WIDTH)) {
-                // Lanes past the right edge repeat the last pixel and are not written.
-                let x = std::array::from_fn(|k| (left + k).min(width - 1) as f32 + 0.5);
-                let packet = primary_packet(view, F32x8::from(x), y);
-                let hits = accel.intersect_packet(&packet).hit().move_mask();
-                for (k, c) in out.iter_mut().enumerate() {
-                    *c = (hits >> k & 1) as f32;
-                }
-            }
-            progress.advance(1);
-            Ok(())
-        })
+    trace_rows(accel, view, progress, covered, |found, out| {
+        let hits = found.hit().move_mask();
+        for (k, c) in out.iter_mut().enumerate() {
+            *c = (hits >> k & 1) as f32;
+        }
+    })
 }
 
 /// Writes into `hits` the surface the primary ray through each pixel centre of `view` meets
@@ -61,31 +47,49 @@ pub fn primary_hits(
     progress: &Progress,
     hits: &mut [SurfaceHit],
 ) -> Result<(), Cancelled> {
+    trace_rows(accel, view, progress, hits, |found, out| {
+        let mask = found.hit().move_mask();
+        let (u, v) = (found.u.to_array(), found.v.to_array());
+        let (object, triangle) = (found.object.to_array(), found.triangle.to_array());
+        for (k, hit) in out.iter_mut().enumerate() {
+            *hit = if mask >> k & 1 == 1 {
+                SurfaceHit {
+                    object: object[k],
+                    triangle: triangle[k],
+                    u: u[k],
+                    v: v[k],
+                }
+            } else {
+                SurfaceHit::MISS
+            };
+        }
+    })
+}
+
+/// Traces the primary rays of `view`'s pixel centres, rows in parallel and eight pixels a
+/// packet, and has `write` turn each packet's hits into its (up to eight) values of `out`
+/// (`view.width`×`view.height` values). Lanes past the right edge repeat the last pixel and
+/// are not written.
+fn trace_rows<T: Send>(
+    accel: &SceneAccel,
+    view: &View,
+    progress: &Progress,
+    out: &mut [T],
+    write: impl Fn(&PacketHits, &mut [T]) + Sync,
+) -> Result<(), Cancelled> {
     let width = view.width as usize;
-    debug_assert_eq!(hits.len(), width * view.height as usize);
-    hits.par_chunks_mut(width)
+    debug_assert_eq!(out.len(), width * view.height as usize);
+    out.par_chunks_mut(width)
         .enumerate()
         .try_for_each(|(y, row)| {
             progress.check()?;
             let y = F32x8::splat(y as f32 + 0.5);
             for (left, out) in (0..width).step_by(WIDTH).zip(row.chunks_mut(WIDTH)) {
                 let x = std::array::from_fn(|k| (left + k).min(width - 1) as f32 + 0.5);
-                let found = accel.intersect_packet(&primary_packet(view, F32x8::from(x), y));
-                let mask = found.hit().move_mask();
-                let (u, v) = (found.u.to_array(), found.v.to_array());
-                let (object, triangle) = (found.object.to_array(), found.triangle.to_array());
-                for (k, hit) in out.iter_mut().enumerate() {
-                    *hit = if mask >> k & 1 == 1 {
-                        SurfaceHit {
-                            object: object[k],
-                            triangle: triangle[k],
-                            u: u[k],
-                            v: v[k],
-                        }
-                    } else {
-                        SurfaceHit::MISS
-                    };
-                }
+                write(
+                    &accel.intersect_packet(&primary_packet(view, F32x8::from(x), y)),
+                    out,
+                );
             }
             progress.advance(1);
             Ok(())
