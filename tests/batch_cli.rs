@@ -345,3 +345,35 @@ fn a_contact_sheet_lays_out_titled_thumbnails_and_skips_a_broken_file() {
         assert_eq!(sheet.get_pixel(x, y), alone.get_pixel(x, y), "({x}, {y})");
     }
 }
+
+#[test]
+fn view_grid_draws_rows_of_titled_thumbnails_and_skips_a_broken_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = dir.path();
+    let mut args = vec!["view", "--grid", "--graphics", "halfblock"];
+    args.extend(["--width", "41", "--columns", "2"]);
+    args.extend(three_models_and_a_broken_one(at));
+    let o = rastray(&args, at);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o.stderr));
+    let stderr = text(&o.stderr);
+    assert!(stderr.contains("error: broken.obj:1"), "{stderr}");
+    assert!(stderr.contains("failed: broken.obj"), "{stderr}");
+    let stdout = text(&o.stdout);
+    let lines: Vec<&str> = stdout.lines().collect();
+    // Two thumbnails of 20 columns a row, square on 10×20-pixel cells: 10 rows of cells, then
+    // the titles. Three models sorted by name make two rows.
+    assert_eq!(lines.len(), 22, "{stdout}");
+    assert_eq!(lines[10].trim(), "box                  cube");
+    assert_eq!(lines[21].trim(), "wedge");
+    for picture in lines[..10].iter().chain(&lines[11..21]) {
+        assert!(picture.contains('\x1b'), "a picture line: {picture:?}");
+    }
+    // In pixels: one picture a row.
+    args[3] = "kitty";
+    let o = rastray(&args, at);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(text(&o.stdout).matches("\x1b_Ga=T").count(), 2);
+    // Several inputs without --grid are refused.
+    let o = rastray(&["view", "cube.obj", "box.glb"], at);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o.stderr));
+}

@@ -22,6 +22,7 @@ mod stdin_model;
 mod stdout;
 mod up_arg;
 mod view;
+mod view_grid;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -171,7 +172,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
         Some(Command::Render(args)) => render::run(&args, &defaults()?),
         Some(Command::Join(args)) => join::run(&args),
-        Some(Command::View(args)) => view::run(&args, &defaults()?).map(|()| ExitCode::SUCCESS),
+        Some(Command::View(args)) => view::run(&args, &defaults()?),
         Some(Command::Completions { shell }) => {
             let mut script = Vec::new();
             clap_complete::generate(shell, &mut command(), "rastray", &mut script);

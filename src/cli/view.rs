@@ -4,6 +4,7 @@
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
+use std::process::ExitCode;
 use std::sync::Arc;
 
 use anyhow::Context;
@@ -18,6 +19,7 @@ use super::camera_args::CameraArgs;
 use super::config::Defaults;
 use super::graphics_arg::GraphicsArg;
 use super::motion::{self, MotionArgs, Picture, Shown};
+use super::view_grid;
 
 /// Width / height of the picture: the shape of `rastray render`'s default 1920×1080.
 const ASPECT: f32 = 16.0 / 9.0;
@@ -30,6 +32,15 @@ pub struct ViewArgs {
     /// Scene file (TOML), or a model file (.obj, .stl, .ply, .gltf, .glb, or one known by its
     /// content) shown on its own; the built-in default scene when absent.
     pub scene: Option<PathBuf>,
+    /// More scenes or models, shown beside the first with `--grid`.
+    #[arg(requires = "grid")]
+    pub more: Vec<PathBuf>,
+    /// Show every input as a titled thumbnail in a grid: a contact sheet in the terminal.
+    #[arg(long, conflicts_with_all = ["spin", "watch"])]
+    pub grid: bool,
+    /// With --grid: thumbnails per row (default: as many of about 24 columns as fit).
+    #[arg(long, requires = "grid", value_parser = clap::value_parser!(u32).range(1..=100))]
+    pub columns: Option<u32>,
     /// For a model file shown on its own: the axis of the file that points up (x, y, z, -x,
     /// -y, -z); CAD files are usually z. Default y.
     #[arg(long, value_parser = super::up_arg::parse_up, allow_hyphen_values = true)]
@@ -52,7 +63,7 @@ pub struct ViewArgs {
     pub motion: MotionArgs,
 }
 
-pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<()> {
+pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
     args.camera.check(None)?;
     let up = args.up.or(defaults.up.filter(|_| {
         args.scene
@@ -80,6 +91,20 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<()> {
         .algorithm
         .or(defaults.algorithm)
         .map_or(Algorithm::Phong, |a| a.0);
+    if args.grid {
+        let inputs: Vec<PathBuf> = args.scene.iter().chain(&args.more).cloned().collect();
+        return view_grid::run(&view_grid::GridRequest {
+            inputs: &inputs,
+            protocol,
+            cols,
+            cell,
+            columns: args.columns,
+            options: RenderOptions::new(algorithm, width, height),
+            display: &args.display,
+            camera: &args.camera,
+            up: args.up.or(defaults.up),
+        });
+    }
     let options = args
         .display
         .apply(RenderOptions::new(algorithm, width, height));
@@ -91,7 +116,7 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<()> {
             area,
             options,
         };
-        return motion::play(&args.motion, &picture, || {
+        motion::play(&args.motion, &picture, || {
             let (scene, base) = super::load_scene(args.scene.as_deref(), up)?;
             let report = super::build_world(&scene, &base)?;
             let world = Arc::new(report.world);
@@ -107,7 +132,8 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<()> {
                 camera,
                 inputs,
             })
-        });
+        })?;
+        return Ok(ExitCode::SUCCESS);
     }
     let world = Arc::new(World::build(&scene, &base)?);
     args.display.print_notes(&world);
@@ -126,5 +152,5 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<()> {
     if protocol.has_pixels() {
         super::stdout::bytes(b"\n");
     }
-    Ok(())
+    Ok(ExitCode::SUCCESS)
 }
