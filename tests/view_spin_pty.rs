@@ -6,6 +6,7 @@ mod pty;
 use std::path::Path;
 
 use pty::Editor;
+use rustix::process::Signal;
 
 /// Bytes that bring the cursor back to the picture's corner before each frame.
 const BACK_TO_CORNER: &[u8] = b"\x1b8";
@@ -47,13 +48,27 @@ fn left_clean(editor: &Editor) {
 #[test]
 fn a_key_stops_the_turntable_and_the_terminal_is_restored() {
     let dir = tempfile::tempdir().unwrap();
-    for key in [&b"x"[..], b"\x03"] {
+    // A key ends it with success; Ctrl-C (a key on the raw terminal) as SIGINT would: 130.
+    for (key, code) in [(&b"x"[..], 0), (b"\x03", 130)] {
         let mut editor = spin(dir.path(), &[]);
         // Several frames drawn in place, over the first.
         editor.read_until(|out| count(out, BACK_TO_CORNER) >= 3);
         editor.keys(key);
         let status = editor.wait();
-        assert!(status.success(), "{status:?} after {key:?}");
+        assert_eq!(status.code(), Some(code), "{status:?} after {key:?}");
+        left_clean(&editor);
+    }
+}
+
+#[test]
+fn a_signal_stops_the_turntable_with_its_exit_code_and_the_terminal_is_restored() {
+    let dir = tempfile::tempdir().unwrap();
+    for (signal, code) in [(Signal::TERM, 143), (Signal::INT, 130)] {
+        let mut editor = spin(dir.path(), &[]);
+        editor.read_until(|out| count(out, BACK_TO_CORNER) >= 3);
+        editor.signal(signal);
+        let status = editor.wait();
+        assert_eq!(status.code(), Some(code), "{status:?} after {signal:?}");
         left_clean(&editor);
     }
 }

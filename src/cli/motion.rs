@@ -9,8 +9,9 @@
 
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
+use std::process::ExitCode;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc;
 use std::time::{Duration, Instant, SystemTime};
 
@@ -24,7 +25,7 @@ use rastray::terminal_image::{CellArea, Protocol, kitty};
 use rastray::tui::pacer::{self, Pacer};
 use rastray::tui::preview::PreviewImage;
 use rastray::tui::term_input::{Reply, TermInput};
-use ratatui::crossterm::event::{Event, KeyEventKind};
+use ratatui::crossterm::event::{Event, KeyCode, KeyEventKind, KeyModifiers};
 use signal_hook::consts::{SIGINT, SIGTERM};
 
 /// Shortest time between two frames: at most 30 frames a second.
@@ -74,16 +75,20 @@ pub struct Picture {
 }
 
 /// Plays `motion` of what `load` gives (called again when a watched file changes), drawn as
-/// `picture`, until a key, Ctrl-C, SIGTERM or the last of `--loops` turns.
+/// `picture`, until a key, Ctrl-C, SIGTERM or the last of `--loops` turns. Ends with exit code
+/// 0 after a key or the last turn, and 128 + the signal's number after SIGINT or SIGTERM (Ctrl-C
+/// typed on a raw terminal counts as SIGINT), as a shell expects of an interrupted command.
 pub fn play(
     motion: &MotionArgs,
     picture: &Picture,
     mut load: impl FnMut() -> anyhow::Result<Shown>,
-) -> anyhow::Result<()> {
+) -> anyhow::Result<ExitCode> {
     let interactive = std::io::stdin().is_terminal() && std::io::stdout().is_terminal();
     let stop = Arc::new(AtomicBool::new(false));
+    // The number of the signal that stopped the motion, 0 while none has.
+    let signalled = Arc::new(AtomicUsize::new(0));
     for number in [SIGINT, SIGTERM] {
-        signal_hook::flag::register(number, Arc::clone(&stop))?;
+        signal_hook::flag::register_usize(number, Arc::clone(&signalled), number as usize)?;
     }
     let (send, input) = mpsc::channel();
     let mut screen = Screen::new(interactive, picture.area.rows)?;
@@ -110,10 +115,13 @@ pub fn play(
     let (mut next_frame, mut next_check) = (Instant::now(), Instant::now() + WATCH_INTERVAL);
     loop {
         while let Ok(event) = input.try_recv() {
-            handle(event, &stop, &mut pacer);
+            handle(event, &stop, &signalled, &mut pacer);
         }
         let now = Instant::now();
-        if stop.load(Ordering::Relaxed) || last.is_some_and(|last| drawn >= last) {
+        if stop.load(Ordering::Relaxed)
+            || signalled.load(Ordering::Relaxed) != 0
+            || last.is_some_and(|last| drawn >= last)
+        {
             break;
         }
         if motion.watch && now >= next_check {
@@ -155,14 +163,21 @@ pub fn play(
             .unwrap_or(now)
             .max(Instant::now() + Duration::from_millis(2));
         if let Ok(event) = input.recv_timeout(wake - Instant::now()) {
-            handle(event, &stop, &mut pacer);
+            handle(event, &stop, &signalled, &mut pacer);
         }
     }
     if interactive && pacer.awaiting() {
         // Answers still on their way would reach the shell as typed text.
         std::thread::sleep(pacer::LAST_ANSWER);
     }
-    screen.finish()
+    screen.finish()?;
+    Ok(match signalled.load(Ordering::Relaxed) {
+        0 => ExitCode::SUCCESS,
+        number => {
+            eprintln!("stopped by {}", super::batch_run::signal_name(number));
+            ExitCode::from(128 + number as u8)
+        }
+    })
 }
 
 /// The id of the picture a kitty terminal replaces frame after frame.
@@ -179,10 +194,15 @@ fn encode(picture: &Picture, image: &PreviewImage, terminal: bool) -> anyhow::Re
     bytes.context("cannot encode the picture")
 }
 
-/// One input: a key stops, an answer notes the frame drawn.
-fn handle(event: TermInput, stop: &AtomicBool, pacer: &mut Pacer) {
+/// One input: Ctrl-C stops as SIGINT would, another key stops, an answer notes the frame
+/// drawn.
+fn handle(event: TermInput, stop: &AtomicBool, signalled: &AtomicUsize, pacer: &mut Pacer) {
     match event {
         TermInput::Event(Event::Key(key)) if key.kind != KeyEventKind::Release => {
+            let ctrl_c = key.code == KeyCode::Char('c') && key.modifiers == KeyModifiers::CONTROL;
+            if ctrl_c {
+                signalled.store(SIGINT as usize, Ordering::Relaxed);
+            }
             stop.store(true, Ordering::Relaxed);
         }
         TermInput::Reply(Reply::CursorPosition { .. }) => pacer.answered(Instant::now()),

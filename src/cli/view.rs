@@ -116,7 +116,7 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
             area,
             options,
         };
-        motion::play(&args.motion, &picture, || {
+        return motion::play(&args.motion, &picture, || {
             let (scene, base) = super::load_scene(args.scene.as_deref(), up)?;
             let report = super::build_world(&scene, &base)?;
             let world = Arc::new(report.world);
@@ -132,8 +132,7 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
                 camera,
                 inputs,
             })
-        })?;
-        return Ok(ExitCode::SUCCESS);
+        });
     }
     let world = Arc::new(World::build(&scene, &base)?);
     args.display.print_notes(&world);
