@@ -338,3 +338,95 @@ fn the_command_line_takes_modes_and_overlays_and_refuses_unknown_ones() {
         assert!(stderr.contains(says), "{stderr}");
     }
 }
+
+#[test]
+fn the_outline_runs_on_where_two_strips_meet() {
+    // 4096×1400 samples are rendered as strips of 1024 rows (4M samples each). The cube's bottom
+    // edge lies on row 1023, just above the seam: its outline's second row is the next strip's
+    // first, which sees no cube. In every algorithm, the outline must be exactly the cube's
+    // mask grown by 2 pixels (a square reach), less the mask.
+    let scene = scene_with(
+        "position = [0.0, 0.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nprojection = \"orthographic\"\nheight = 2.0",
+        "[[object]]\ntype = \"box\"\ncenter = [0.0, 0.0386, 0.0]\nsize = [1.0, 1.0, 1.0]",
+    );
+    let (w, h) = (4096_usize, 1400_usize);
+    let world = common::world(&scene);
+    for algorithm in [Algorithm::Phong, Algorithm::Ray] {
+        let options = RenderOptions {
+            alpha: true,
+            overlays: Overlays {
+                outline: true,
+                ..Overlays::default()
+            },
+            ..RenderOptions::new(algorithm, w as u32, h as u32)
+        };
+        let frame = common::render(&world, &scene.camera, options).0;
+        let on = |x: usize, y: usize| {
+            // The outline lies off the object, so it is background in the coverage.
+            frame.alpha.as_ref().unwrap()[y * w + x] > 0.5
+                && frame.pixels[y * w + x] != rastray::render::overlay_colors::OUTLINE
+        };
+        let mask: Vec<bool> = (0..w * h).map(|i| on(i % w, i / w)).collect();
+        let bottom = (0..h).rev().find(|&y| mask[y * w + w / 2]).unwrap();
+        assert_eq!(bottom, 1022, "the cube's last row sits above the seam");
+        let near = |x: usize, y: usize| {
+            (y.saturating_sub(2)..=(y + 2).min(h - 1))
+                .any(|j| (x.saturating_sub(2)..=(x + 2).min(w - 1)).any(|i| mask[j * w + i]))
+        };
+        let wrong: Vec<(usize, usize)> = (0..w * h)
+            .map(|i| (i % w, i / w))
+            .filter(|&(x, y)| {
+                let drawn = frame.pixels[y * w + x] == rastray::render::overlay_colors::OUTLINE;
+                drawn != (!mask[y * w + x] && near(x, y))
+            })
+            .collect();
+        assert!(
+            wrong.is_empty(),
+            "{algorithm:?}: {} pixels differ, first {:?}",
+            wrong.len(),
+            &wrong[..wrong.len().min(5)]
+        );
+    }
+}
+
+#[test]
+fn the_bounding_box_has_its_lengths_written_beside_it_in_images_that_can_show_them() {
+    // A 2 × 1 × 1 box seen from above at an angle: with labels, pixels change near the box and
+    // some take the box's colour (the text); without, or in a frame too low to read, none do.
+    let scene = scene_with(
+        "position = [1.0, 2.0, 4.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 45.0",
+        "[[object]]\ntype = \"box\"\ncenter = [0.0, 0.0, 0.0]\nsize = [2.0, 1.0, 1.0]",
+    );
+    let world = common::world(&scene);
+    let bbox = |labels: bool, width: u32, height: u32| {
+        let options = RenderOptions {
+            overlays: Overlays {
+                bbox: true,
+                labels,
+                ..Overlays::default()
+            },
+            ..RenderOptions::new(Algorithm::Phong, width, height)
+        };
+        common::render(&world, &scene.camera, options).0
+    };
+    let (plain, labelled) = (bbox(false, 320, 240), bbox(true, 320, 240));
+    let changed: Vec<usize> = (0..plain.pixels.len())
+        .filter(|&i| plain.pixels[i] != labelled.pixels[i])
+        .collect();
+    let inked = changed
+        .iter()
+        .filter(|&&i| {
+            // Anti-aliased text: nearer the box's colour than the pixel was, and yellow.
+            let bounds = rastray::render::overlay_colors::BOUNDS;
+            let (p, q) = (labelled.pixels[i], plain.pixels[i]);
+            p.distance(bounds) < q.distance(bounds) && p.x > 0.4 && p.z < 0.25
+        })
+        .count();
+    assert!(changed.len() > 100, "{} pixels changed", changed.len());
+    assert!(inked > 30, "{inked} pixels of text");
+    // `--overlay bbox` asks for the labels.
+    let parsed: Overlays = "bbox".parse().unwrap();
+    assert!(parsed.labels);
+    // Below 120 pixels high, no text.
+    assert_eq!(bbox(false, 160, 100).pixels, bbox(true, 160, 100).pixels);
+}

@@ -105,9 +105,11 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
             up: args.up.or(defaults.up),
         });
     }
-    let options = args
+    let mut options = args
         .display
         .apply(RenderOptions::new(algorithm, width, height));
+    // Text cells are too coarse for the box's written lengths.
+    options.overlays.labels &= protocol.has_pixels();
     options.check()?;
     let aspect = width as f32 / height as f32;
     if args.motion.active() {

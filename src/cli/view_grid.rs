@@ -113,12 +113,14 @@ pub fn run(request: &GridRequest) -> anyhow::Result<ExitCode> {
     let (width, height) = request
         .protocol
         .picture_size(layout.thumbnail, request.cell);
-    let options = request.display.apply(RenderOptions {
+    let mut options = request.display.apply(RenderOptions {
         width,
         height,
         alpha: false,
         ..request.options
     });
+    // Text cells are too coarse for the box's written lengths.
+    options.overlays.labels &= request.protocol.has_pixels();
     options.check()?;
     let mut renderer = Renderer::new(options);
     let mut frame = Frame::default();

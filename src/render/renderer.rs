@@ -15,7 +15,7 @@ use super::error::RenderError;
 use super::frame::{Frame, box_filter};
 use super::mode_shading::ModeShading;
 use super::options::RenderOptions;
-use super::overlay::{Canvas, draw_overlays};
+use super::overlay::{Canvas, GrownHits, draw_labels, draw_overlays, outline_reach};
 use super::prepared::Prepared;
 use super::progress::{Cancelled, Progress};
 use super::raster::{RasterScratch, raster_coverage, raster_hits, render_gouraud, render_phong};
@@ -276,13 +276,31 @@ fn render_frame(
             }
             no_rays()
         };
-        find_hits(raster, view, work, hits)?;
+        // The outline looks a line's width past the strip's top and bottom: the hits of those
+        // rows too, so that it does not break where two strips meet.
+        let (above, below) = if options.overlays.outline {
+            let reach = outline_reach(n);
+            (
+                reach.min(view.row_offset),
+                reach.min(view.image_height - view.row_offset - view.height),
+            )
+        } else {
+            (0, 0)
+        };
+        let grown = View {
+            row_offset: view.row_offset - above,
+            height: view.height + above + below,
+            ..*view
+        };
+        find_hits(raster, &grown, work, hits)?;
+        let width = view.width as usize;
+        let strip_hits = &hits[above as usize * width..][..view.height as usize * width];
         if options.mode != DisplayMode::Shaded {
-            ModeShading::new(world, view, options.mode, n).apply(hits, out);
+            ModeShading::new(world, view, options.mode, n).apply(strip_hits, out);
         }
         if options.overlays.any() {
             depth.clear();
-            depth.par_extend(hits.par_iter().map(|hit| {
+            depth.par_extend(strip_hits.par_iter().map(|hit| {
                 if hit.is_hit() {
                     hit.depth(world, view)
                 } else {
@@ -295,7 +313,11 @@ fn render_frame(
                 out,
                 depth,
             };
-            draw_overlays(&options.overlays, world, hits, &mut canvas);
+            let grown_hits = GrownHits {
+                hits,
+                above: above as usize,
+            };
+            draw_overlays(&options.overlays, world, &grown_hits, &mut canvas);
         }
         if let (false, Some(covered)) = (lit, covered) {
             leave_out_background(out, covered);
@@ -356,6 +378,7 @@ fn render_frame(
         };
         rays = rays + cast;
     }
+    draw_labels(&options.overlays, world, camera, frame);
     stats.rays = rays;
     stats.draw = started
         .elapsed()

@@ -5,6 +5,7 @@
 
 mod bounds_box;
 mod canvas;
+mod dimensions;
 mod gizmo;
 mod grid;
 mod outline;
@@ -17,7 +18,10 @@ pub use set::{OverlayKind, Overlays, UnknownOverlay};
 
 pub(super) use canvas::Canvas;
 
+use super::camera::View;
+use super::frame::Frame;
 use super::surface_hit::SurfaceHit;
+use crate::scene::Camera;
 use crate::world::World;
 
 /// Line colours, linear RGB.
@@ -37,11 +41,22 @@ pub mod colors {
     ];
 }
 
-/// Draws `overlays` over `canvas` (one strip's samples), whose surfaces are `hits`.
+pub(super) use outline::reach as outline_reach;
+
+/// The surface hits of a strip's samples and of rows beyond it: `above` rows over its top, then
+/// its own rows, then any below, all of the strip's width.
+pub(super) struct GrownHits<'a> {
+    pub hits: &'a [SurfaceHit],
+    /// Rows of `hits` above the strip's first row.
+    pub above: usize,
+}
+
+/// Draws `overlays` over `canvas` (one strip's samples), whose surfaces, with those of the rows
+/// around it, are `hits`.
 pub(super) fn draw_overlays(
     overlays: &Overlays,
     world: &World,
-    hits: &[SurfaceHit],
+    hits: &GrownHits,
     canvas: &mut Canvas,
 ) {
     if overlays.grid
@@ -60,4 +75,18 @@ pub(super) fn draw_overlays(
     if overlays.axes {
         gizmo::draw(canvas);
     }
+}
+
+/// Writes the bounding box's lengths into the finished `frame` (rendered through `camera`), when
+/// `overlays` ask for them and the frame is high enough to read them.
+pub(super) fn draw_labels(overlays: &Overlays, world: &World, camera: &Camera, frame: &mut Frame) {
+    if !(overlays.bbox && overlays.labels) || frame.height < dimensions::MIN_HEIGHT {
+        return;
+    }
+    let Some(bounds) = overlay_bounds(world, overlays.selected) else {
+        return;
+    };
+    let view = View::new(camera, frame.width, frame.height);
+    let text_height = (frame.height / 36).clamp(11, 40);
+    dimensions::draw(&dimensions::labels(bounds, &view), text_height, frame);
 }

@@ -1,29 +1,38 @@
 //! The outline of the selection: samples off the selected objects within a line's width of a
 //! sample on them, found from the surface hits.
 
+use super::GrownHits;
 use super::canvas::Canvas;
 use super::colors;
 use super::set::Overlays;
-use crate::render::surface_hit::SurfaceHit;
 
 /// Line width, output pixels.
 const WIDTH: f32 = 2.0;
 
+/// How far the outline reaches from the selection, in samples, at `samples` per pixel side: the
+/// rows of hits a strip needs beyond its top and bottom.
+pub fn reach(samples: u32) -> u32 {
+    (WIDTH * samples as f32).round().max(1.0) as u32
+}
+
 /// Colours the samples of `canvas` that see no selected object but lie within [`WIDTH`] pixels
-/// (a square reach) of one that does. Samples near the strip's top and bottom see only the
-/// strip's rows.
-pub fn draw(selected: Option<(u32, u32)>, hits: &[SurfaceHit], canvas: &mut Canvas) {
-    let (w, h) = (canvas.view.width as usize, canvas.view.height as usize);
+/// (a square reach) of one that does. `hits` holds the strip's rows and those around it, so the
+/// outline runs on across the strip's top and bottom.
+pub fn draw(selected: Option<(u32, u32)>, hits: &GrownHits, canvas: &mut Canvas) {
+    let w = canvas.view.width as usize;
+    let h = hits.hits.len() / w.max(1);
     let on: Vec<bool> = hits
+        .hits
         .iter()
         .map(|hit| hit.is_hit() && Overlays::is_selected(selected, hit.object))
         .collect();
-    let reach = (WIDTH * canvas.samples as f32).round().max(1.0) as usize;
+    let reach = reach(canvas.samples) as usize;
     // A square dilation in two passes: along rows, then along columns.
     let rows = dilate(&on, w, h, reach, 1, w);
     let square = dilate(&rows, h, w, reach, w, 1);
+    let first = hits.above * w;
     for (i, out) in canvas.out.iter_mut().enumerate() {
-        if square[i] && !on[i] {
+        if square[first + i] && !on[first + i] {
             *out = colors::OUTLINE;
         }
     }

@@ -16,6 +16,10 @@ pub struct Overlays {
     pub outline: bool,
     /// The selected world objects, `first..end`; `None` is the whole scene.
     pub selected: Option<(u32, u32)>,
+    /// With `bbox`: its lengths written as text beside its edges, in frames at least
+    /// [`super::dimensions::MIN_HEIGHT`] pixels high. On for `--overlay bbox`, off in the
+    /// editor's preview, whose status line gives them.
+    pub labels: bool,
 }
 
 impl Overlays {
@@ -85,6 +89,7 @@ impl FromStr for Overlays {
             };
             *flag = true;
         }
+        overlays.labels = overlays.bbox;
         Ok(overlays)
     }
 }
