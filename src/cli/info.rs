@@ -3,7 +3,8 @@
 use super::stdout::outln;
 use std::path::Path;
 
-use rastray::mesh::{Measurements, MeshFile, measure};
+use glam::Vec3;
+use rastray::mesh::{Measurements, MeshFile, measure, placed_positions};
 use rastray::scene::Shape;
 use rastray::text_escape::Escaped;
 use rastray::world::{MeshFileCache, WorldObject};
@@ -48,10 +49,35 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
     let mut measured = Vec::with_capacity(scene.objects.len());
     for (i, (object, parts)) in scene.objects.iter().zip(&parts_of).enumerate() {
         let triangles: usize = parts.iter().map(|(b, _)| b.mesh.triangle_count()).sum();
-        let meshes: Vec<_> = parts
-            .iter()
-            .map(|(b, _)| (&b.mesh.positions[..], &b.mesh.triangles[..]))
-            .collect();
+        let model = match &object.shape {
+            Shape::Mesh { path, .. } => cache.get(&base.join(path)).ok(),
+            _ => None,
+        };
+        let file_parts = model.as_ref().map(|m| m.parts()).unwrap_or_default();
+        // A model is measured from its file's welded vertices placed as the world places them
+        // (the same values): a flat-shaded world mesh has three vertices a triangle to weld.
+        let placed: Vec<Vec<Vec3>> = match &model {
+            Some(model) => {
+                let (lo, hi) = model.bounds();
+                file_parts
+                    .iter()
+                    .map(|p| placed_positions(object, p.geometry, (lo + hi) * 0.5))
+                    .collect()
+            }
+            None => Vec::new(),
+        };
+        let meshes: Vec<(&[Vec3], &[[u32; 3]])> = if placed.is_empty() {
+            parts
+                .iter()
+                .map(|(b, _)| (&b.mesh.positions[..], &b.mesh.triangles[..]))
+                .collect()
+        } else {
+            placed
+                .iter()
+                .zip(&file_parts)
+                .map(|(p, part)| (&p[..], &part.geometry.triangles[..]))
+                .collect()
+        };
         let world_measure = measure(&meshes);
         measured.push(world_measure);
         // A mesh object is measured in its file's units (its scale divided out); the scene's
@@ -73,13 +99,9 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
                 .unwrap_or_default()
         );
         outln!("        {}", measurements(&m));
-        let model = match &object.shape {
-            Shape::Mesh { path, up, .. } => cache.get(&base.join(path)).ok().inspect(|model| {
-                outln!("        {}, up {up}", Escaped(&describe(model)));
-            }),
-            _ => None,
-        };
-        let file_parts = model.as_ref().map(|m| m.parts()).unwrap_or_default();
+        if let (Shape::Mesh { up, .. }, Some(model)) = (&object.shape, &model) {
+            outln!("        {}, up {up}", Escaped(&describe(model)));
+        }
         for (k, (built, label)) in parts.iter().enumerate() {
             if let Some(label) = label {
                 let texture = file_parts.get(k).and_then(|p| p.texture);

@@ -11,7 +11,9 @@
 
 use glam::{DVec3, Vec3};
 
-use super::weld::{Welder, coordinate_bits};
+use rayon::prelude::*;
+
+use super::weld::{BATCH, Welder, coordinate_bits};
 
 /// What [`measure`] finds. Lengths in the mesh's units, areas in their square, volumes in their
 /// cube.
@@ -89,8 +91,12 @@ impl Measurements {
     }
 }
 
+/// Triangles summed as one piece, in order: partial sums of fixed pieces added in order make
+/// the totals the same whatever the number of threads.
+const PIECE: usize = 1 << 16;
+
 /// Measures the triangles of `parts` (each a position list and triangles indexing it) as one
-/// mesh, welded across parts.
+/// mesh, welded across parts. Sums, edges and the sort run on the current rayon pool.
 pub fn measure(parts: &[(&[Vec3], &[[u32; 3]])]) -> Measurements {
     let distinct: usize = parts.iter().map(|(p, _)| p.len()).sum();
     let mut welder = Welder::<3>::with_capacity(distinct);
@@ -98,44 +104,72 @@ pub fn measure(parts: &[(&[Vec3], &[[u32; 3]])]) -> Measurements {
     let mut positions: Vec<DVec3> = Vec::new();
     let mut m = Measurements::default();
     for (part_positions, triangles) in parts {
-        let ids: Vec<u32> = part_positions
-            .iter()
-            .map(|p| {
-                let id = welder.index(p.to_array().map(coordinate_bits));
+        let mut ids = vec![0_u32; part_positions.len()];
+        let mut keys = [[0_u32; 3]; BATCH];
+        for (points, out) in part_positions.chunks(BATCH).zip(ids.chunks_mut(BATCH)) {
+            for (key, p) in keys.iter_mut().zip(points) {
+                *key = p.to_array().map(coordinate_bits);
+            }
+            welder.index_all(&keys[..points.len()], out);
+            for (&id, p) in out.iter().zip(points) {
                 if id as usize == positions.len() {
                     positions.push(p.as_dvec3());
                 }
-                id
-            })
-            .collect();
-        for &[a, b, c] in *triangles {
-            let [pa, pb, pc] = [a, b, c].map(|i| part_positions[i as usize]);
-            m.bounds = Some(match m.bounds {
-                None => (pa.min(pb).min(pc), pa.max(pb).max(pc)),
-                Some((lo, hi)) => (lo.min(pa).min(pb).min(pc), hi.max(pa).max(pb).max(pc)),
-            });
-            m.triangles += 1;
-            if (pb - pa).cross(pc - pa).normalize_or_zero() == Vec3::ZERO {
-                m.degenerate_triangles += 1;
             }
-            let [da, db, dc] = [pa, pb, pc].map(Vec3::as_dvec3);
-            m.area += 0.5 * (db - da).cross(dc - da).length();
-            welded_triangles.push([a, b, c].map(|i| ids[i as usize]));
         }
+        let pieces: Vec<Measurements> = triangles
+            .par_chunks(PIECE)
+            .map(|piece| measure_piece(part_positions, piece))
+            .collect();
+        for piece in pieces {
+            m.bounds = match (m.bounds, piece.bounds) {
+                (Some((lo, hi)), Some((a, b))) => Some((lo.min(a), hi.max(b))),
+                (bounds, None) | (None, bounds) => bounds,
+            };
+            m.triangles += piece.triangles;
+            m.degenerate_triangles += piece.degenerate_triangles;
+            m.area += piece.area;
+        }
+        welded_triangles.extend(triangles.iter().map(|t| t.map(|i| ids[i as usize])));
     }
     let edges = edge_counts(&welded_triangles);
     m.boundary_edges = edges.boundary;
     m.non_manifold_edges = edges.non_manifold;
     m.misoriented_edges = edges.misoriented;
     if m.closed() && m.misoriented_edges == 0 {
-        let six_v: f64 = welded_triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|i| positions[i as usize]);
-                a.dot(b.cross(c))
+        let pieces: Vec<f64> = welded_triangles
+            .par_chunks(PIECE)
+            .map(|piece| {
+                piece
+                    .iter()
+                    .map(|t| {
+                        let [a, b, c] = t.map(|i| positions[i as usize]);
+                        a.dot(b.cross(c))
+                    })
+                    .sum()
             })
-            .sum();
+            .collect();
+        let six_v: f64 = pieces.iter().sum();
         m.volume = Some((six_v / 6.0).abs());
+    }
+    m
+}
+
+/// Bounds, count, degenerate count and area of `triangles` (indexing `positions`).
+fn measure_piece(positions: &[Vec3], triangles: &[[u32; 3]]) -> Measurements {
+    let mut m = Measurements::default();
+    for &[a, b, c] in triangles {
+        let [pa, pb, pc] = [a, b, c].map(|i| positions[i as usize]);
+        m.bounds = Some(match m.bounds {
+            None => (pa.min(pb).min(pc), pa.max(pb).max(pc)),
+            Some((lo, hi)) => (lo.min(pa).min(pb).min(pc), hi.max(pa).max(pb).max(pc)),
+        });
+        m.triangles += 1;
+        if (pb - pa).cross(pc - pa).normalize_or_zero() == Vec3::ZERO {
+            m.degenerate_triangles += 1;
+        }
+        let [da, db, dc] = [pa, pb, pc].map(Vec3::as_dvec3);
+        m.area += 0.5 * (db - da).cross(dc - da).length();
     }
     m
 }
@@ -148,20 +182,25 @@ struct EdgeCounts {
 }
 
 /// Counts the edges by how many triangles use them. A triangle with a repeated corner adds no
-/// edge between equal corners.
+/// edge between equal corners. Vertex ids are below 2³¹ (a world holds at most a few tens of
+/// millions), so an edge is one `u64`.
 fn edge_counts(triangles: &[[u32; 3]]) -> EdgeCounts {
-    // Each edge as its two ends, lower first, shifted left one bit with the direction in bit 0.
-    let mut keys: Vec<u128> = Vec::with_capacity(triangles.len() * 3);
-    for &[a, b, c] in triangles {
-        for (from, to) in [(a, b), (b, c), (c, a)] {
-            if from != to {
-                let (lo, hi) = (from.min(to), from.max(to));
-                let key = ((lo as u128) << 32 | hi as u128) << 1 | (from > to) as u128;
-                keys.push(key);
-            }
-        }
-    }
-    keys.sort_unstable();
+    // Each edge as its lower end in the high 32 bits, its higher end shifted left one bit
+    // below it, and its direction in bit 0: the two uses of one edge sort side by side.
+    let mut keys: Vec<u64> = triangles
+        .par_iter()
+        .flat_map_iter(|&[a, b, c]| {
+            [(a, b), (b, c), (c, a)]
+                .into_iter()
+                .filter(|(from, to)| from != to)
+                .map(|(from, to)| {
+                    let (lo, hi) = (from.min(to), from.max(to));
+                    debug_assert!(hi < 1 << 31, "vertex ids fit in 31 bits");
+                    (lo as u64) << 32 | (hi as u64) << 1 | (from > to) as u64
+                })
+        })
+        .collect();
+    keys.par_sort_unstable();
     let mut counts = EdgeCounts {
         boundary: 0,
         non_manifold: 0,

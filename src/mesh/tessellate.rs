@@ -82,6 +82,21 @@ pub fn tessellate_part(object: &Object, geometry: &ModelGeometry, centre: Vec3) 
     local.transformed(object_transform(object))
 }
 
+/// The world positions of `geometry`'s (welded) vertices as [`tessellate_part`] places them,
+/// bit for bit: a model's shape can be measured from these and the file's triangles without the
+/// world mesh, whose flat-shaded corners each have a vertex of their own.
+pub fn placed_positions(object: &Object, geometry: &ModelGeometry, centre: Vec3) -> Vec<Vec3> {
+    let Shape::Mesh { scale, .. } = &object.shape else {
+        panic!("only mesh objects have model parts");
+    };
+    let transform = object_transform(object);
+    geometry
+        .positions
+        .iter()
+        .map(|&p| transform.transform_point3((p - centre) * *scale))
+        .collect()
+}
+
 /// A mesh using the file's own corner normals, and `colors` (one per position) when given;
 /// corners with equal position index and normal share a vertex (a position index holds one
 /// colour, so corners of different colours never do).
