@@ -1,6 +1,6 @@
 //! `rastray view`: one render printed to stdout as a picture, in real pixels (kitty, sixel,
-//! iTerm2) where the terminal can show them, else half blocks, or plain text when stdout is not
-//! a terminal.
+//! iTerm2) where the terminal answers for them, else text cells (see `view_terminal`), or plain
+//! text when stdout is not a terminal or `TERM=dumb`.
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -10,7 +10,7 @@ use anyhow::Context;
 use clap::Args;
 use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
-use rastray::terminal_image::{CellArea, CellSize, Protocol};
+use rastray::terminal_image::{CellArea, Protocol};
 use rastray::tui::preview::PreviewImage;
 
 use super::algorithm_arg::AlgorithmArg;
@@ -18,6 +18,7 @@ use super::camera_args::CameraArgs;
 use super::config::Defaults;
 use super::graphics_arg::GraphicsArg;
 use super::motion::{self, MotionArgs, Picture, Shown};
+use super::view_terminal::{self, Drawing};
 
 /// Width / height of the picture: the shape of `rastray render`'s default 1920×1080.
 const ASPECT: f32 = 16.0 / 9.0;
@@ -62,20 +63,19 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<()> {
     let (scene, base) = super::load_scene(args.scene.as_deref(), up)?;
     let stdout = std::io::stdout();
     let is_terminal = stdout.is_terminal();
-    let protocol = args
-        .graphics
-        .or(defaults.graphics)
-        .unwrap_or_default()
-        .view_protocol()
-        .unwrap_or_else(|| Protocol::detect(is_terminal, |k| std::env::var(k).ok()));
+    let drawing = view_terminal::decide(
+        args.graphics.or(defaults.graphics).unwrap_or_default(),
+        is_terminal,
+    );
+    let protocol = drawing.protocol;
     let terminal_cols = is_terminal
         .then(|| ratatui::crossterm::terminal::size().ok())
         .flatten()
         .map(|(cols, _)| u32::from(cols));
     let cols = args.width.or(terminal_cols).unwrap_or(DEFAULT_COLS);
-    let cell = CellSize::default();
+    let cell = drawing.cell;
     let area = CellArea::for_aspect(cols, ASPECT, cell);
-    let (width, height) = protocol.picture_size(area, cell);
+    let (width, height) = fit_window(protocol, protocol.picture_size(area, cell), &drawing);
     let algorithm = args
         .algorithm
         .or(defaults.algorithm)
@@ -127,4 +127,17 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<()> {
         super::stdout::bytes(b"\n");
     }
     Ok(())
+}
+
+/// `size` made to fit the terminal: a sixel picture, which the terminal draws at its own size
+/// (and xterm not at all when it is too wide), is scaled down with its aspect kept to the text
+/// area's width in pixels, when known.
+fn fit_window(protocol: Protocol, (width, height): (u32, u32), drawing: &Drawing) -> (u32, u32) {
+    match drawing.window_width {
+        Some(window) if protocol == Protocol::Sixel && width > window => {
+            let scaled = u64::from(height) * u64::from(window) / u64::from(width.max(1));
+            (window.max(1), (scaled as u32).max(1))
+        }
+        _ => (width, height),
+    }
 }
