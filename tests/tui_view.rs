@@ -698,3 +698,28 @@ fn each_glyph_set_draws_the_preview_and_the_status_line_names_it() {
         );
     }
 }
+
+#[test]
+fn at_60_by_20_the_camera_target_labels_stay_apart() {
+    let mut app = small_app(60, 20);
+    while app.item() != Item::Settings {
+        apply(&mut app, Action::Up);
+    }
+    apply(&mut app, Action::FocusNext);
+    // Down to the target's coordinates, so that they are in view.
+    for _ in 0..4 {
+        apply(&mut app, Action::Down);
+    }
+    let text = snapshot(&buffer(&app, 60, 20));
+    let labels: Vec<&str> = ["x", "y", "z"]
+        .iter()
+        .map(|axis| {
+            let suffix = format!(".target.{axis} ");
+            let found = text.lines().find(|l| l.contains(&suffix));
+            assert!(found.is_some(), "no .target.{axis}:\n{text}");
+            found.unwrap()
+        })
+        .collect();
+    assert!(labels[0] != labels[1] && labels[1] != labels[2]);
+    insta::assert_snapshot!(text);
+}
