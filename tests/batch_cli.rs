@@ -352,7 +352,9 @@ fn view_grid_draws_rows_of_titled_thumbnails_and_skips_a_broken_file() {
     let at = dir.path();
     let mut args = vec!["view", "--grid", "--graphics", "halfblock"];
     args.extend(["--width", "41", "--columns", "2"]);
-    args.extend(three_models_and_a_broken_one(at));
+    // The broken file first: the first input is skipped as any other.
+    let [a, b, c, broken] = three_models_and_a_broken_one(at);
+    args.extend([broken, a, b, c]);
     let o = rastray(&args, at);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o.stderr));
     let stderr = text(&o.stderr);

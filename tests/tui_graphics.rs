@@ -12,7 +12,7 @@ use base64::engine::general_purpose::STANDARD;
 use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::scene::default_scene;
-use rastray::terminal_image::{CellSize, Protocol, kitty};
+use rastray::terminal_image::{CellSize, GlyphSet, Protocol, kitty};
 use rastray::tui::ColorMode;
 use rastray::tui::app::App;
 use rastray::tui::color_probe::{decide, query};
@@ -140,7 +140,7 @@ fn tmux_without_passthrough_gets_half_blocks_and_says_why() {
     assert_eq!(graphics.protocol, Some(Protocol::Kitty));
     assert_eq!(graphics.tmux_pane, Some((81, 0)));
     // The kitty query travels through passthrough there.
-    let asked = query(true);
+    let asked = query(true, true);
     let wrapped = b"\x1bPtmux;\x1b\x1b_Gi=31,";
     assert!(
         asked.windows(wrapped.len()).any(|w| w == wrapped),
@@ -164,7 +164,10 @@ fn iterm2_names_itself_and_forced_choices_are_kept() {
         choose(GraphicsRequest::Sixel, &silent).protocol,
         Some(Protocol::Sixel)
     );
-    assert_eq!(choose(GraphicsRequest::HalfBlock, &silent).protocol, None);
+    assert_eq!(
+        choose(GraphicsRequest::Cells(GlyphSet::HalfBlock), &silent).protocol,
+        None
+    );
     // The kernel's pixel fields give the cell size when the terminal does not.
     let kernel = Facts {
         winsize: Some((100, 30, 1000, 600)),
@@ -230,7 +233,7 @@ fn the_editor_sends_the_rendered_image_over_kitty_and_deletes_it_on_quit() {
         ws_ypixel: 600,
     };
     let mut editor = pty::Editor::start_sized(dir.path(), &["--graphics", "kitty"], size);
-    editor.read_until(|out| !kitty_pictures(out).is_empty());
+    editor.read_until(|out| !kitty_pictures(&unwrapped(out)).is_empty());
     editor.wait_for("kitty");
     let (keys, shown) = kitty_pictures(&editor.output).remove(0);
     // The picture fills the preview's cells, at their pixels.
@@ -252,6 +255,7 @@ fn the_editor_sends_the_rendered_image_over_kitty_and_deletes_it_on_quit() {
     let (w, h) = shown.dimensions();
     let graphics = Graphics {
         protocol: Some(Protocol::Kitty),
+        cells: GlyphSet::HalfBlock,
         cell: cell(10, 20),
         tmux_pane: None,
         why: None,
@@ -295,4 +299,142 @@ fn the_editor_sends_the_rendered_image_over_kitty_and_deletes_it_on_quit() {
         .expect("pictures deleted on quit");
     let leave = text.rfind("\x1b[?1049l").expect("alternate screen left");
     assert!(cleanup < leave);
+}
+
+/// The editor on a pty as if inside tmux (`TMUX` set, and a `tmux` on the PATH that reports
+/// `allow-passthrough` as `passthrough` and the pane at the top-left), started in `dir`.
+fn editor_in_tmux(dir: &std::path::Path, passthrough: &str) -> pty::Editor {
+    use std::os::unix::fs::PermissionsExt;
+    let bin = dir.join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    let fake = bin.join("tmux");
+    std::fs::write(
+        &fake,
+        format!(
+            "#!/bin/sh\ncase \"$*\" in\n  *allow-passthrough*) echo {passthrough};;\n  *pane_left*) echo 0,0;;\nesac\n"
+        ),
+    )
+    .unwrap();
+    std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let path = format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let size = Winsize {
+        ws_row: 30,
+        ws_col: 100,
+        ws_xpixel: 0,
+        ws_ypixel: 0,
+    };
+    pty::Editor::start_env(
+        dir,
+        &[],
+        size,
+        &[
+            ("TMUX", "/tmp/tmux-0/default,1,0"),
+            ("TERM", "tmux-256color"),
+            ("PATH", &path),
+        ],
+    )
+}
+
+/// `bytes` with tmux passthrough's doubled escapes made single again.
+fn unwrapped(bytes: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(bytes.len());
+    for (i, &b) in bytes.iter().enumerate() {
+        if !(b == 0x1b && i > 0 && bytes[i - 1] == 0x1b && out.last() == Some(&0x1b)) {
+            out.push(b);
+        }
+    }
+    out
+}
+
+fn position(haystack: &[u8], needle: &[u8]) -> Option<usize> {
+    haystack.windows(needle.len()).position(|w| w == needle)
+}
+
+#[test]
+fn in_tmux_with_passthrough_kitty_answering_after_tmux_s_da1_still_gets_pixels() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut editor = editor_in_tmux(dir.path(), "on");
+    editor.read_until(|out| position(out, b"\x1b[c").is_some());
+    // The kitty query went through passthrough, never raw (tmux would make it the title).
+    let asked = editor.output.clone();
+    let raw = b"\x1b_Gi=31";
+    let at = position(&asked, raw).expect("the kitty query");
+    assert!(
+        at > 0 && asked[at - 1] == 0x1b,
+        "raw kitty query: {asked:?}"
+    );
+    // tmux answers at once; kitty's answers come through a moment later.
+    editor.keys(b"\x1bP>|tmux 3.3a\x1b\\\x1b[?1;2c");
+    std::thread::sleep(std::time::Duration::from_millis(150));
+    editor.keys(b"\x1b_Gi=31;OK\x1b\\\x1b[6;19;8t\x1b[4;570;800t");
+    editor.read_until(|out| !kitty_pictures(&unwrapped(out)).is_empty());
+    editor.wait_for("kitty");
+    // The cursor move and the picture travel in one passthrough sequence.
+    let out = editor.output.clone();
+    let moved = position(&out, b"\x1bPtmux;\x1b\x1b7\x1b\x1b[").expect("a placed picture");
+    let rest = &out[moved + 8..];
+    let picture = position(rest, b"\x1b\x1b_Ga=T").expect("the picture");
+    let next = position(rest, b"\x1bPtmux;").unwrap_or(usize::MAX);
+    assert!(picture < next, "the picture left the cursor's passthrough");
+    // At the cells' shape: 8×19 pixels.
+    let (keys, shown) = kitty_pictures(&unwrapped(&out)).remove(0);
+    let (c, r) = (control(&keys, "c").unwrap(), control(&keys, "r").unwrap());
+    let aspect = (8.0 * c as f32) / (19.0 * r as f32);
+    let (w, h) = shown.dimensions();
+    assert!((w as f32 / h as f32 / aspect - 1.0).abs() < 0.02, "{w}x{h}");
+    editor.keys(b"q");
+    assert!(editor.wait().success());
+}
+
+#[test]
+fn in_tmux_without_passthrough_nothing_reaches_the_pane_title() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut editor = editor_in_tmux(dir.path(), "off");
+    editor.read_until(|out| position(out, b"\x1b[c").is_some());
+    editor.keys(b"\x1bP>|tmux 3.3a\x1b\\\x1b[?1;2c");
+    editor.wait_for("allow-passthrough");
+    editor.wait_for("half blocks");
+    editor.keys(b"q");
+    assert!(editor.wait().success());
+    // No kitty sequence at all, wrapped or raw: tmux takes a raw one for the title.
+    assert_eq!(position(&editor.output, b"_G"), None);
+    assert_eq!(position(&editor.output, b"\x1bPtmux;"), None);
+}
+
+#[test]
+fn without_pixels_auto_draws_sextants_where_xtversion_names_a_terminal_known_to_draw_them() {
+    let facts = |version: &[u8]| Facts {
+        replies: replies(&[version, b"\x1b[6;19;8t\x1b[?62;22c"].concat()),
+        ..xterm_env()
+    };
+    for name in [
+        "kitty(0.26.5)",
+        "foot(1.16.2)",
+        "WezTerm 20240203",
+        "ghostty 1.0",
+    ] {
+        let version = format!("\x1bP>|{name}\x1b\\");
+        let graphics = choose(GraphicsRequest::Cells(GlyphSet::Sextant), &facts(b""));
+        assert_eq!(graphics.label(), "sextants");
+        let auto = choose(GraphicsRequest::Auto, &facts(version.as_bytes()));
+        if auto.protocol.is_none() {
+            assert_eq!(auto.cells, GlyphSet::Sextant, "{name}");
+            assert_eq!(auto.label(), "sextants");
+        }
+    }
+    let xterm = choose(GraphicsRequest::Auto, &facts(b"\x1bP>|XTerm(379)\x1b\\"));
+    assert_eq!(xterm.label(), "half blocks");
+    assert_eq!(xterm.cell, cell(8, 19));
+    // Cells rendered with square pixels in the cells' shape: 8×19 → 2 across, 4.75 down a cell.
+    assert_eq!(xterm.cells_size(40, 20), (40, 48));
+    let quadrants = choose(GraphicsRequest::Cells(GlyphSet::Quadrant), &facts(b""));
+    assert_eq!(quadrants.cells_size(40, 20), (80, 95));
+    assert_eq!(quadrants.label(), "quadrants");
+    // Without an answer, 1:2.
+    let silent = choose(GraphicsRequest::Cells(GlyphSet::Braille), &xterm_env());
+    assert_eq!(silent.cells_size(40, 20), (80, 80));
 }

@@ -199,6 +199,7 @@ fn cells_coarse(image: &PreviewImage, mode: ColorMode, coarse: &Option<Vec<bool>
         image,
         mode,
         coarse,
+        set: rastray::terminal_image::GlyphSet::HalfBlock,
     }
     .render(area, &mut buf);
     buf
@@ -549,6 +550,7 @@ fn keys_on_the_too_small_screen_change_nothing_but_quit_and_help_act() {
 fn sixel_app(width: u16, height: u16) -> App {
     let graphics = Graphics {
         protocol: Some(Protocol::Sixel),
+        cells: rastray::terminal_image::GlyphSet::HalfBlock,
         cell: CellSize {
             width: 10,
             height: 20,
@@ -599,4 +601,125 @@ fn a_picture_in_pixels_lies_over_blank_cells_that_a_dialog_rewrites() {
         picture.positions().all(|p| changed.contains(&(p.x, p.y))),
         "cells under the picture are left as they were"
     );
+}
+
+/// A frame rendered for `graphics`' glyph set over the preview of a `width`×`height` screen:
+/// a red disc on dark blue, in square pixels of the size the set asks for.
+fn cells_app(graphics: Graphics, width: u16, height: u16) -> (App, Rect) {
+    let mut app = app().with_graphics(graphics.clone());
+    let p = layout(Rect::new(0, 0, width, height), &app)
+        .unwrap()
+        .picture;
+    let (w, h) = graphics.cells_size(p.width, p.height);
+    let (cx, cy, r) = (w as f32 / 2.0, h as f32 / 2.0, h as f32 / 3.0);
+    let pixels = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let (dx, dy) = (x as f32 + 0.5 - cx, y as f32 + 0.5 - cy);
+            if dx * dx + dy * dy < r * r {
+                [220, 40, 30]
+            } else {
+                [10, 20, 70]
+            }
+        })
+        .collect();
+    apply(
+        &mut app,
+        Action::Rendered(Box::new(RenderReply::Shot {
+            id: 1,
+            slot: Slot::Main,
+            image: PreviewImage {
+                width: w,
+                height: h,
+                pixels,
+            },
+            millis: 1.0,
+            triangles: 112,
+            last: true,
+        })),
+    );
+    (app, p)
+}
+
+#[test]
+fn each_glyph_set_draws_the_preview_and_the_status_line_names_it() {
+    use rastray::terminal_image::GlyphSet;
+    let cell = CellSize {
+        width: 8,
+        height: 19,
+    };
+    for (set, name, glyphs) in [
+        (GlyphSet::HalfBlock, "half blocks", "▀▄"),
+        (GlyphSet::Quadrant, "quadrants", "▘▝▖▗▚▞▙▛▜▟"),
+        (
+            GlyphSet::Sextant,
+            "sextants",
+            "\u{1FB00}\u{1FB01}\u{1FB02}\u{1FB03}\u{1FB07}\u{1FB0B}\u{1FB0F}\u{1FB13}\u{1FB17}\u{1FB1B}\u{1FB1E}\u{1FB20}\u{1FB22}\u{1FB26}\u{1FB28}\u{1FB2A}\u{1FB2D}\u{1FB30}\u{1FB32}\u{1FB34}\u{1FB36}\u{1FB38}\u{1FB3A}\u{1FB3B}",
+        ),
+        (GlyphSet::Braille, "braille", ""),
+    ] {
+        let (app, picture) = cells_app(Graphics::in_cells(set, cell, None), 100, 30);
+        let buf = buffer(&app, 100, 30);
+        assert!(
+            row(&buf, 28).contains(&format!("│ {name} │")),
+            "{}",
+            row(&buf, 28)
+        );
+        let drawn: String = picture
+            .positions()
+            .map(|p| buf[p].symbol().to_string())
+            .collect();
+        let finer = match set {
+            GlyphSet::Braille => drawn
+                .chars()
+                .any(|c| ('\u{2801}'..='\u{28FF}').contains(&c)),
+            _ => drawn.chars().any(|c| glyphs.contains(c)),
+        };
+        assert!(finer, "{name}: {drawn}");
+        // The disc is round on 8×19 cells: as many pixels of it across as down, counted in
+        // cells of its colour (a cell whose background or foreground is the disc's).
+        let red = |p: (u16, u16)| {
+            let c = &buf[p];
+            let is = |color: ratatui::style::Color| matches!(color, ratatui::style::Color::Rgb(r, _, _) if r > 150);
+            is(c.bg) || (c.symbol() != " " && is(c.fg))
+        };
+        let middle_row = picture.y + picture.height / 2;
+        let middle_col = picture.x + picture.width / 2;
+        let across = (picture.x..picture.right())
+            .filter(|&x| red((x, middle_row)))
+            .count();
+        let down = (picture.y..picture.bottom())
+            .filter(|&y| red((middle_col, y)))
+            .count();
+        let ratio = (across as f32 * 8.0) / (down as f32 * 19.0);
+        assert!(
+            (ratio - 1.0).abs() < 0.2,
+            "{name}: {across} across, {down} down"
+        );
+    }
+}
+
+#[test]
+fn at_60_by_20_the_camera_target_labels_stay_apart() {
+    let mut app = small_app(60, 20);
+    while app.item() != Item::Settings {
+        apply(&mut app, Action::Up);
+    }
+    apply(&mut app, Action::FocusNext);
+    // Down to the target's coordinates, so that they are in view.
+    for _ in 0..4 {
+        apply(&mut app, Action::Down);
+    }
+    let text = snapshot(&buffer(&app, 60, 20));
+    let labels: Vec<&str> = ["x", "y", "z"]
+        .iter()
+        .map(|axis| {
+            let suffix = format!(".target.{axis} ");
+            let found = text.lines().find(|l| l.contains(&suffix));
+            assert!(found.is_some(), "no .target.{axis}:\n{text}");
+            found.unwrap()
+        })
+        .collect();
+    assert!(labels[0] != labels[1] && labels[1] != labels[2]);
+    insta::assert_snapshot!(text);
 }

@@ -8,8 +8,9 @@ use rastray::tui::graphics::GraphicsRequest;
 /// How to draw pictures: asked of the terminal, or one protocol.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, ValueEnum)]
 pub enum GraphicsArg {
-    /// The best the terminal has: kitty, iTerm2 or sixel, else half blocks (`view`: plain text
-    /// when stdout is not a terminal).
+    /// The best the terminal has: kitty, iTerm2 or sixel, else the sharpest glyph set it is
+    /// known to draw (sextants in kitty, WezTerm, foot, Ghostty), else half blocks (`view`:
+    /// plain text when stdout is not a terminal or TERM=dumb).
     #[default]
     Auto,
     Kitty,
@@ -17,38 +18,43 @@ pub enum GraphicsArg {
     Iterm2,
     /// Half blocks `▀▄▌▐`: 2×2 sub-cells a cell, two colours.
     Halfblock,
-    /// Quadrants `▘▝▖▗▚▞▙▛▜▟`: 2×2 sub-cells in any pattern (`view` only, for now).
+    /// Quadrants `▘▝▖▗▚▞▙▛▜▟`: 2×2 sub-cells in any pattern.
     Quadrant,
-    /// Sextants (Unicode 13, U+1FB00…): 2×3 sub-cells (`view` only, for now).
+    /// Sextants (Unicode 13, U+1FB00…): 2×3 sub-cells.
     Sextant,
-    /// Braille dots: 2×4 (`view` only, for now).
+    /// Braille dots: 2×4.
     Braille,
     /// A character ramp with no escape sequences (`view` only).
     Plain,
 }
 
 impl GraphicsArg {
-    /// The editor's request; `plain` is refused, since the editor draws a full screen.
-    pub fn editor_request(self) -> anyhow::Result<GraphicsRequest> {
-        Ok(match self {
+    /// The request for the terminal's probe; `None` for `plain`, which asks nothing.
+    pub fn request(self) -> Option<GraphicsRequest> {
+        Some(match self {
             GraphicsArg::Auto => GraphicsRequest::Auto,
             GraphicsArg::Kitty => GraphicsRequest::Kitty,
             GraphicsArg::Sixel => GraphicsRequest::Sixel,
             GraphicsArg::Iterm2 => GraphicsRequest::Iterm2,
-            GraphicsArg::Halfblock => GraphicsRequest::HalfBlock,
-            GraphicsArg::Plain
-            | GraphicsArg::Quadrant
-            | GraphicsArg::Sextant
-            | GraphicsArg::Braille => anyhow::bail!(
-                "--graphics {} is for `rastray view`; the editor takes auto, kitty, sixel, iterm2 or halfblock",
-                self.to_possible_value()
-                    .map(|v| v.get_name().to_string())
-                    .unwrap_or_default()
-            ),
+            GraphicsArg::Halfblock => GraphicsRequest::Cells(GlyphSet::HalfBlock),
+            GraphicsArg::Quadrant => GraphicsRequest::Cells(GlyphSet::Quadrant),
+            GraphicsArg::Sextant => GraphicsRequest::Cells(GlyphSet::Sextant),
+            GraphicsArg::Braille => GraphicsRequest::Cells(GlyphSet::Braille),
+            GraphicsArg::Plain => return None,
         })
     }
 
-    /// The protocol `view` prints with; `None` for `auto`.
+    /// The editor's request; `plain` is refused, since the editor draws a full screen.
+    pub fn editor_request(self) -> anyhow::Result<GraphicsRequest> {
+        self.request().ok_or_else(|| {
+            anyhow::anyhow!(
+                "--graphics plain is for `rastray view`; the editor takes auto, kitty, sixel, iterm2, halfblock, quadrant, sextant or braille"
+            )
+        })
+    }
+
+    /// The protocol `view` prints with when the terminal cannot be asked (stdout is not a
+    /// terminal); `None` for `auto`. Text cells are in truecolor.
     pub fn view_protocol(self) -> Option<Protocol> {
         match self {
             GraphicsArg::Auto => None,

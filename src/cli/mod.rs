@@ -23,6 +23,7 @@ mod stdout;
 mod up_arg;
 mod view;
 mod view_grid;
+mod view_terminal;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -56,8 +57,9 @@ pub struct Cli {
     #[arg(long, value_enum)]
     pub color: Option<ColorArg>,
     /// How the editor's preview is drawn (default: asked of the terminal: kitty, iTerm2 or
-    /// sixel graphics where it answers for them, else half blocks; or the config file's). The
-    /// status line names it.
+    /// sixel graphics where it answers for them, else sextants where XTVERSION names kitty,
+    /// WezTerm, foot or Ghostty, else half blocks; or the config file's). The status line names
+    /// it.
     #[arg(long, value_enum)]
     pub graphics: Option<graphics_arg::GraphicsArg>,
     /// Read no config file: only the command line and the built-in defaults count.

@@ -1,6 +1,6 @@
 //! `rastray view`: one render printed to stdout as a picture, in real pixels (kitty, sixel,
-//! iTerm2) where the terminal can show them, else half blocks, or plain text when stdout is not
-//! a terminal.
+//! iTerm2) where the terminal answers for them, else text cells (see `view_terminal`), or plain
+//! text when stdout is not a terminal or `TERM=dumb`.
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -11,7 +11,7 @@ use anyhow::Context;
 use clap::Args;
 use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
-use rastray::terminal_image::{CellArea, CellSize, Protocol};
+use rastray::terminal_image::{CellArea, Protocol};
 use rastray::tui::preview::PreviewImage;
 
 use super::algorithm_arg::AlgorithmArg;
@@ -20,6 +20,7 @@ use super::config::Defaults;
 use super::graphics_arg::GraphicsArg;
 use super::motion::{self, MotionArgs, Picture, Shown};
 use super::view_grid;
+use super::view_terminal::{self, Drawing};
 
 /// Width / height of the picture: the shape of `rastray render`'s default 1920×1080.
 const ASPECT: f32 = 16.0 / 9.0;
@@ -70,23 +71,27 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
             .as_deref()
             .is_some_and(rastray::model_scene::is_model_file)
     }));
-    let (scene, base) = super::load_scene(args.scene.as_deref(), up)?;
+    // With --grid each input is loaded on its own, and one that fails is skipped.
+    let loaded = if args.grid {
+        None
+    } else {
+        Some(super::load_scene(args.scene.as_deref(), up)?)
+    };
     let stdout = std::io::stdout();
     let is_terminal = stdout.is_terminal();
-    let protocol = args
-        .graphics
-        .or(defaults.graphics)
-        .unwrap_or_default()
-        .view_protocol()
-        .unwrap_or_else(|| Protocol::detect(is_terminal, |k| std::env::var(k).ok()));
+    let drawing = view_terminal::decide(
+        args.graphics.or(defaults.graphics).unwrap_or_default(),
+        is_terminal,
+    );
+    let protocol = drawing.protocol;
     let terminal_cols = is_terminal
         .then(|| ratatui::crossterm::terminal::size().ok())
         .flatten()
         .map(|(cols, _)| u32::from(cols));
     let cols = args.width.or(terminal_cols).unwrap_or(DEFAULT_COLS);
-    let cell = CellSize::default();
+    let cell = drawing.cell;
     let area = CellArea::for_aspect(cols, ASPECT, cell);
-    let (width, height) = protocol.picture_size(area, cell);
+    let (width, height) = fit_window(protocol, protocol.picture_size(area, cell), &drawing);
     let algorithm = args
         .algorithm
         .or(defaults.algorithm)
@@ -105,6 +110,7 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
             up: args.up.or(defaults.up),
         });
     }
+    let (scene, base) = loaded.expect("loaded without --grid");
     let mut options = args
         .display
         .apply(RenderOptions::new(algorithm, width, height));
@@ -154,4 +160,17 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
         super::stdout::bytes(b"\n");
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// `size` made to fit the terminal: a sixel picture, which the terminal draws at its own size
+/// (and xterm not at all when it is too wide), is scaled down with its aspect kept to the text
+/// area's width in pixels, when known.
+fn fit_window(protocol: Protocol, (width, height): (u32, u32), drawing: &Drawing) -> (u32, u32) {
+    match drawing.window_width {
+        Some(window) if protocol == Protocol::Sixel && width > window => {
+            let scaled = u64::from(height) * u64::from(window) / u64::from(width.max(1));
+            (window.max(1), (scaled as u32).max(1))
+        }
+        _ => (width, height),
+    }
 }

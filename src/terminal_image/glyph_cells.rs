@@ -48,6 +48,16 @@ impl GlyphSet {
         }
     }
 
+    /// The set's name in the editor's status line.
+    pub fn label(self) -> &'static str {
+        match self {
+            GlyphSet::HalfBlock => "half blocks",
+            GlyphSet::Quadrant => "quadrants",
+            GlyphSet::Sextant => "sextants",
+            GlyphSet::Braille => "braille",
+        }
+    }
+
     /// Sub-cells across and down one cell.
     fn grid(self) -> (u32, u32) {
         match self {
@@ -477,10 +487,61 @@ fn encode_row(
     out
 }
 
-/// `image` (at [`SAMPLES_X`]×[`SAMPLES_Y`] pixels a cell, `cols` × `rows` cells) as lines of
-/// `set`'s glyphs with SGR colours in `mode`; every line ends with a reset. A colour is sent only
-/// when it changes, and each cell is spelled the way that changes the fewest. Rows are encoded
-/// in parallel; the text is the same on any number of threads.
+/// One cell as a terminal buffer holds it: a glyph in a foreground over a background colour
+/// (8-bit sRGB). A cell of one colour is a space, its `fg` unused.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GlyphCell {
+    pub glyph: char,
+    pub fg: [u8; 3],
+    pub bg: [u8; 3],
+}
+
+/// Chooses cells of one set, one at a time (for a cell buffer such as the editor's).
+#[derive(Debug, Clone)]
+pub struct CellChooser {
+    layers: Vec<Layer>,
+    scratch: Box<[[u32; 3]; 256]>,
+}
+
+impl CellChooser {
+    pub fn new(set: GlyphSet) -> CellChooser {
+        CellChooser {
+            layers: set.layers(),
+            scratch: Box::new([[0; 3]; 256]),
+        }
+    }
+
+    /// The best cell (`col`, `row`) of `image`, which is at [`SAMPLES_X`]×[`SAMPLES_Y`] pixels
+    /// a cell (see [`fit`]).
+    pub fn choose(&mut self, image: &PreviewImage, col: u32, row: u32) -> GlyphCell {
+        let cell = best_cell(
+            &FineSums::of(image, col, row),
+            &self.layers,
+            &mut self.scratch,
+        );
+        GlyphCell {
+            glyph: cell.glyph,
+            fg: cell.fg,
+            bg: cell.bg,
+        }
+    }
+}
+
+/// `image` on the grid the encoder samples for `cols` × `rows` cells: itself when it has that
+/// size, else resampled (a render with square pixels on cells that are not 1:2).
+pub fn fit(image: &PreviewImage, cols: u32, rows: u32) -> std::borrow::Cow<'_, PreviewImage> {
+    let (width, height) = (cols * SAMPLES_X, rows * SAMPLES_Y);
+    if image.width == width && image.height == height {
+        std::borrow::Cow::Borrowed(image)
+    } else {
+        std::borrow::Cow::Owned(super::resample::nearest(image, width, height))
+    }
+}
+
+/// `image` (`cols` × `rows` cells, resampled by [`fit`] to [`SAMPLES_X`]×[`SAMPLES_Y`] pixels
+/// a cell) as lines of `set`'s glyphs with SGR colours in `mode`; every line ends with a reset.
+/// A colour is sent only when it changes, and each cell is spelled the way that changes the
+/// fewest. Rows are encoded in parallel; the text is the same on any number of threads.
 pub fn encode(
     image: &PreviewImage,
     cols: u32,
@@ -489,6 +550,7 @@ pub fn encode(
     mode: ColorMode,
 ) -> String {
     use rayon::prelude::*;
+    let image = &*fit(image, cols, rows);
     let layers = set.layers();
     let lines: Vec<String> = (0..rows)
         .into_par_iter()

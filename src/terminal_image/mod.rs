@@ -15,6 +15,7 @@ pub mod median_cut;
 pub mod passthrough;
 pub mod png;
 pub mod protocol;
+pub mod resample;
 pub mod sixel;
 
 pub use cell_area::{CellArea, CellSize};

@@ -61,16 +61,20 @@ impl Protocol {
         }
     }
 
-    /// The size of the picture to render for `area` with cells of `cell` pixels: the cells'
-    /// pixels for a pixel protocol, [`glyph_cells::SAMPLES_X`]×[`glyph_cells::SAMPLES_Y`] a cell
-    /// for glyph cells, one pixel a column and two a row for the plain ramp.
+    /// The size of the picture to render for `area` with cells of `cell` pixels, always in
+    /// square pixels: the cells' pixels for a pixel protocol; for glyph cells
+    /// [`glyph_cells::SAMPLES_X`] a cell across and as many down as the cell's shape makes
+    /// square ([`glyph_cells::SAMPLES_Y`] on 1:2 cells; the encoder resamples to that);
+    /// one pixel a column and two a row for the plain ramp.
     pub fn picture_size(self, area: CellArea, cell: CellSize) -> (u32, u32) {
         match self {
             Protocol::Kitty | Protocol::Sixel | Protocol::Iterm2 => area.pixels(cell),
-            Protocol::Cells(..) => (
-                area.cols * glyph_cells::SAMPLES_X,
-                area.rows * glyph_cells::SAMPLES_Y,
-            ),
+            Protocol::Cells(..) => {
+                let across = u64::from(glyph_cells::SAMPLES_X);
+                let (w, h) = (u64::from(cell.width.max(1)), u64::from(cell.height.max(1)));
+                let down = (u64::from(area.rows) * across * h + w / 2) / w;
+                (area.cols * glyph_cells::SAMPLES_X, down.max(1) as u32)
+            }
             Protocol::Plain => area.half_block_pixels(),
         }
     }

@@ -28,19 +28,33 @@ pub const COLOR_QUERY: &[u8] = b"\x1bP+q524742;5463\x1b\\\x1b[48;2;1;2;3m\x1bP$q
 /// pixels.
 const SIZE_QUERY: &[u8] = b"\x1b[>0q\x1b[16t\x1b[14t";
 
+/// XTVERSION alone.
+const VERSION_QUERY: &[u8] = b"\x1b[>0q";
+
+/// The cell size and the text area in pixels alone.
+const CELL_QUERY: &[u8] = b"\x1b[16t\x1b[14t";
+
 /// Primary device attributes: the sentinel every terminal answers.
 const DA1: &[u8] = b"\x1b[c";
 
-/// Everything asked at start-up, in order, DA1 last. Inside tmux the kitty query is sent
-/// through passthrough (`kitty_through_tmux`), since tmux itself does not answer it.
-pub fn query(kitty_through_tmux: bool) -> Vec<u8> {
-    let kitty = if kitty_through_tmux {
-        passthrough::tmux(kitty::QUERY)
-    } else {
-        kitty::QUERY.to_vec()
-    };
-    [COLOR_QUERY, &kitty, SIZE_QUERY, DA1].concat()
+/// Everything asked at start-up, in order, DA1 last. Inside tmux (`in_tmux`) the kitty query
+/// and the size questions go through passthrough when tmux allows it (`passthrough`), since tmux
+/// answers neither for the terminal outside; when it does not allow it the kitty query is left
+/// out, as tmux would show it in the pane's title.
+pub fn query(in_tmux: bool, passthrough: bool) -> Vec<u8> {
+    match (in_tmux, passthrough) {
+        (false, _) => [COLOR_QUERY, kitty::QUERY, SIZE_QUERY, DA1].concat(),
+        (true, true) => {
+            let outside = passthrough::tmux(&[kitty::QUERY, CELL_QUERY].concat());
+            [COLOR_QUERY, &outside, VERSION_QUERY, DA1].concat()
+        }
+        (true, false) => [COLOR_QUERY, SIZE_QUERY, DA1].concat(),
+    }
 }
+
+/// How long to keep listening after DA1 inside tmux with passthrough: tmux answers DA1 itself
+/// at once, and the outer terminal's answers to what passed through come after it.
+pub const TMUX_GRACE: Duration = Duration::from_millis(500);
 
 /// How long to wait for the sentinel before deciding on what has arrived.
 pub const TIMEOUT: Duration = Duration::from_millis(300);
@@ -96,11 +110,21 @@ pub struct Startup {
 }
 
 /// Decides the colour depth (`color` when given, else what `COLORTERM` states, else what the
-/// terminal answers, else 256 colours) and the graphics for `request`. Asks the terminal only
-/// when something is left to decide and standard input and output are a terminal; raw mode is
-/// on while it waits and back as it was afterwards.
+/// terminal answers, else 256 colours) and the graphics for `request`, from [`facts`].
 pub fn detect(color: Option<ColorMode>, request: GraphicsRequest) -> Startup {
     let color = color.or_else(|| from_env(std::env::var("COLORTERM").ok().as_deref()));
+    let facts = facts(None);
+    Startup {
+        color: color.unwrap_or_else(|| decide(&facts.replies)),
+        graphics: graphics::choose(request, &facts),
+    }
+}
+
+/// What the environment says, with the terminal's answers to [`query`] when standard input and
+/// output are a terminal. The wait ends at DA1 (inside tmux with passthrough, a little after:
+/// [`TMUX_GRACE`]), or after `timeout`; by default [`TIMEOUT`], or [`HINTED_TIMEOUT`] where the
+/// environment hints at pixels. Raw mode is on while it waits and back as it was afterwards.
+pub fn facts(timeout: Option<Duration>) -> Facts {
     let var = |name: &str| std::env::var(name).unwrap_or_default();
     let in_tmux = std::env::var_os("TMUX").is_some();
     let tmux_passthrough = in_tmux.then(tmux_allows_passthrough).flatten();
@@ -116,21 +140,20 @@ pub fn detect(color: Option<ColorMode>, request: GraphicsRequest) -> Startup {
             .map(|w| (w.columns, w.rows, w.width, w.height)),
         replies: Vec::new(),
     };
-    let questions = color.is_none() || request != GraphicsRequest::HalfBlock;
-    if questions && io::stdin().is_terminal() && io::stdout().is_terminal() {
+    // Asked even when everything is forced: the cell size gives every picture its aspect.
+    if io::stdin().is_terminal() && io::stdout().is_terminal() {
+        let passthrough = tmux_passthrough == Some(true);
         // A terminal that says it has pixels is given longer to answer: one just opened may
         // still be starting up (kitty takes about a second on a loaded machine).
-        let timeout = if facts.hints_pixels() || tmux_passthrough == Some(true) {
+        let timeout = timeout.unwrap_or(if facts.hints_pixels() || passthrough {
             HINTED_TIMEOUT
         } else {
             TIMEOUT
-        };
-        facts.replies = ask_raw(&query(tmux_passthrough == Some(true)), timeout);
+        });
+        let grace = (in_tmux && passthrough).then_some(TMUX_GRACE);
+        facts.replies = ask_raw(&query(in_tmux, passthrough), timeout, grace);
     }
-    Startup {
-        color: color.unwrap_or_else(|| decide(&facts.replies)),
-        graphics: graphics::choose(request, &facts),
-    }
+    facts
 }
 
 /// tmux's `allow-passthrough` for this pane: `on` or `all` allow it. `None` when tmux cannot be
@@ -161,20 +184,22 @@ fn tmux_pane() -> (u16, u16) {
 
 /// Writes `query` with raw mode on and collects the replies for at most `timeout` (see
 /// [`ask`]).
-fn ask_raw(query: &[u8], timeout: Duration) -> Vec<Reply> {
+fn ask_raw(query: &[u8], timeout: Duration, grace: Option<Duration>) -> Vec<Reply> {
     let was_raw = is_raw_mode_enabled().unwrap_or(false);
     if !was_raw && enable_raw_mode().is_err() {
         return Vec::new();
     }
-    let replies = ask(query, timeout).unwrap_or_default();
+    let replies = ask(query, timeout, grace).unwrap_or_default();
     if !was_raw {
         let _ = disable_raw_mode();
     }
     replies
 }
 
-/// Writes `query` and collects the replies until DA1 arrives or `timeout` passes.
-fn ask(query: &[u8], timeout: Duration) -> io::Result<Vec<Reply>> {
+/// Writes `query` and collects the replies until DA1 arrives or `timeout` passes. With a
+/// `grace`, the wait goes on after DA1 for at most that long, until the answers that passed
+/// through tmux are in (see [`outside_answered`]).
+fn ask(query: &[u8], timeout: Duration, grace: Option<Duration>) -> io::Result<Vec<Reply>> {
     let mut out = io::stdout();
     out.write_all(query)?;
     out.flush()?;
@@ -184,7 +209,8 @@ fn ask(query: &[u8], timeout: Duration) -> io::Result<Vec<Reply>> {
     let mut decoded = Vec::new();
     let mut replies = Vec::new();
     let mut buffer = [0u8; 1024];
-    let deadline = Instant::now() + timeout;
+    let mut deadline = Instant::now() + timeout;
+    let mut sentinel_seen = false;
     loop {
         let left = deadline.saturating_duration_since(Instant::now());
         if left.is_zero() {
@@ -210,12 +236,27 @@ fn ask(query: &[u8], timeout: Duration) -> io::Result<Vec<Reply>> {
             if let TermInput::Reply(reply) = input {
                 let sentinel = matches!(reply, Reply::DeviceAttributes(_));
                 replies.push(reply);
-                if sentinel {
+                if sentinel && !sentinel_seen {
+                    sentinel_seen = true;
+                    match grace {
+                        None => return Ok(replies),
+                        Some(g) => deadline = deadline.min(Instant::now() + g),
+                    }
+                }
+                if sentinel_seen && outside_answered(&replies) {
                     return Ok(replies);
                 }
             }
         }
     }
+}
+
+/// Whether the terminal outside tmux has answered what passed through: its text area (the last
+/// question), or the kitty query and the cell size.
+pub fn outside_answered(replies: &[Reply]) -> bool {
+    let has = |f: fn(&Reply) -> bool| replies.iter().any(f);
+    has(|r| matches!(r, Reply::WindowSize { .. }))
+        || (has(|r| matches!(r, Reply::Kitty(_))) && has(|r| matches!(r, Reply::CellSize { .. })))
 }
 
 #[cfg(test)]

@@ -5,11 +5,13 @@
 //! and iTerm2 and WezTerm name themselves in XTVERSION. Environment hints only help where no
 //! question exists (iTerm2's `TERM_PROGRAM`, once the terminal has answered at all). Inside tmux
 //! an image reaches the outer terminal only through DCS passthrough, used when tmux allows it;
-//! otherwise the preview stays in half blocks and the status line says why. `--graphics` picks a
-//! protocol without asking.
+//! otherwise the preview stays in cells and the status line says why. Without pixels the preview
+//! is drawn in the sharpest glyph set the terminal is known to draw (sextants where XTVERSION
+//! names kitty, WezTerm, foot or Ghostty), else half blocks. `--graphics` picks a protocol or a
+//! glyph set without asking.
 
 use super::term_input::Reply;
-use crate::terminal_image::{CellArea, CellSize, Protocol};
+use crate::terminal_image::{CellArea, CellSize, GlyphSet, Protocol};
 
 /// Most pixels one preview image has: 800×600, which keeps one frame of the default scene near
 /// 120 kB in every protocol (see the README); a larger pane is rendered smaller with its aspect
@@ -26,21 +28,25 @@ pub enum GraphicsRequest {
     Kitty,
     Sixel,
     Iterm2,
-    /// Half blocks, without asking.
-    HalfBlock,
+    /// Text cells of this glyph set, without asking for pixels (the cell size is still asked
+    /// for).
+    Cells(GlyphSet),
 }
 
 /// How the preview reaches the screen.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Graphics {
-    /// [`Protocol::Kitty`], [`Protocol::Sixel`] or [`Protocol::Iterm2`]; `None` for half blocks.
+    /// [`Protocol::Kitty`], [`Protocol::Sixel`] or [`Protocol::Iterm2`]; `None` for text cells.
     pub protocol: Option<Protocol>,
+    /// The glyph set of the preview in text cells (without pixels, and for the frames drawn
+    /// while keys arrive).
+    pub cells: GlyphSet,
     /// One cell in screen pixels.
     pub cell: CellSize,
     /// Inside tmux with passthrough: images are wrapped for tmux and placed at the pane's
     /// offset in the outer terminal (column, row; 0-based).
     pub tmux_pane: Option<(u16, u16)>,
-    /// Why half blocks are used where pixels were asked for or hinted at.
+    /// Why text cells are used where pixels were asked for or hinted at.
     pub why: Option<String>,
 }
 
@@ -51,24 +57,49 @@ impl Default for Graphics {
 }
 
 impl Graphics {
-    /// Half blocks, with the reason when pixels were wanted.
+    /// Half blocks on 1:2 cells, with the reason when pixels were wanted.
     pub fn half_blocks(why: Option<String>) -> Graphics {
+        Graphics::in_cells(GlyphSet::HalfBlock, CellSize::default(), why)
+    }
+
+    /// Text cells of `set` on cells of `cell` pixels, with the reason when pixels were wanted.
+    pub fn in_cells(set: GlyphSet, cell: CellSize, why: Option<String>) -> Graphics {
         Graphics {
             protocol: None,
-            cell: CellSize::default(),
+            cells: set,
+            cell,
             tmux_pane: None,
             why,
         }
     }
 
-    /// The name the status line shows: `kitty`, `sixel`, `iTerm2` or `half blocks`.
+    /// The name the status line shows: `kitty`, `sixel`, `iTerm2`, or the glyph set's (`half
+    /// blocks`, `quadrants`, `sextants`, `braille`).
     pub fn label(&self) -> &'static str {
         match self.protocol {
             Some(Protocol::Kitty) => "kitty",
             Some(Protocol::Sixel) => "sixel",
             Some(Protocol::Iterm2) => "iTerm2",
-            _ => "half blocks",
+            _ => self.cells.label(),
         }
+    }
+
+    /// The image size to render for a picture of `cols`×`rows` text cells: square pixels in
+    /// the cells' true shape ([`Graphics::cell`]), one pixel a column for half blocks (two rows
+    /// a cell on 1:2 cells) and two for the finer sets, which the glyph encoder then samples.
+    pub fn cells_size(&self, cols: u16, rows: u16) -> (u32, u32) {
+        let across = match self.cells {
+            GlyphSet::HalfBlock => 1,
+            _ => 2,
+        };
+        let cell = self.cell;
+        let down = u64::from(across) * u64::from(cell.height.max(1));
+        let height = (u64::from(rows) * down + u64::from(cell.width.max(1)) / 2)
+            / u64::from(cell.width.max(1));
+        (
+            u32::from(cols) * across,
+            (height as u32).max(u32::from(rows)),
+        )
     }
 
     /// The image size to render for a picture of `cols`×`rows` cells shown in real pixels: the
@@ -132,6 +163,26 @@ impl Facts {
             .any(|r| matches!(r, Reply::DeviceAttributes(a) if a.contains(&4)))
     }
 
+    /// The terminal's name and version from XTVERSION (`kitty(0.26.5)`), if it answered.
+    fn version(&self) -> Option<&str> {
+        self.replies.iter().find_map(|r| match r {
+            Reply::Dcs(t) => t.strip_prefix(">|"),
+            _ => None,
+        })
+    }
+
+    /// The sharpest glyph set the terminal is known to draw: sextants in kitty, WezTerm, foot
+    /// and Ghostty (by XTVERSION), else half blocks.
+    fn sharpest_cells(&self) -> GlyphSet {
+        let known = ["kitty", "wezterm", "foot", "ghostty"];
+        let name = self.version().unwrap_or_default().to_ascii_lowercase();
+        if known.iter().any(|k| name.starts_with(k)) {
+            GlyphSet::Sextant
+        } else {
+            GlyphSet::HalfBlock
+        }
+    }
+
     /// Whether the terminal is iTerm2 or WezTerm: by XTVERSION, or by `TERM_PROGRAM` once the
     /// terminal has answered at all.
     fn iterm2(&self) -> bool {
@@ -153,9 +204,20 @@ impl Facts {
             || matches!(self.term_program.as_str(), "iTerm.app" | "WezTerm")
     }
 
+    /// The text area in pixels (width, height): the `CSI 14 t` answer, else the kernel's pixel
+    /// fields when filled in.
+    pub fn text_area(&self) -> Option<(u32, u32)> {
+        let positive = |w: u16, h: u16| (w > 0 && h > 0).then_some((u32::from(w), u32::from(h)));
+        let asked = self.replies.iter().find_map(|r| match r {
+            Reply::WindowSize { width, height } => positive(*width, *height),
+            _ => None,
+        });
+        asked.or_else(|| self.winsize.and_then(|(_, _, w, h)| positive(w, h)))
+    }
+
     /// The cell size in pixels: the `CSI 16 t` answer, else the text area (`CSI 14 t`, or the
     /// kernel's pixel fields) over the cells, else 10×20.
-    fn cell(&self) -> CellSize {
+    pub fn cell(&self) -> CellSize {
         let positive = |w: u32, h: u32| {
             (w > 0 && h > 0).then_some(CellSize {
                 width: w,
@@ -187,8 +249,15 @@ impl Facts {
 
 /// The way to draw the preview for `request`, given what the terminal and environment said.
 pub fn choose(request: GraphicsRequest, facts: &Facts) -> Graphics {
+    let cells = |why: Option<String>| {
+        let set = match request {
+            GraphicsRequest::Cells(set) => set,
+            _ => facts.sharpest_cells(),
+        };
+        Graphics::in_cells(set, facts.cell(), why)
+    };
     let wanted = match request {
-        GraphicsRequest::HalfBlock => return Graphics::half_blocks(None),
+        GraphicsRequest::Cells(_) => return cells(None),
         GraphicsRequest::Kitty => Some(Protocol::Kitty),
         GraphicsRequest::Sixel => Some(Protocol::Sixel),
         GraphicsRequest::Iterm2 => Some(Protocol::Iterm2),
@@ -199,7 +268,7 @@ pub fn choose(request: GraphicsRequest, facts: &Facts) -> Graphics {
     };
     let passthrough = facts.tmux_passthrough == Some(true) || facts.kitty();
     let tmux_closed = || {
-        Graphics::half_blocks(Some(
+        cells(Some(
             "tmux allow-passthrough is off (tmux set -g allow-passthrough on)".into(),
         ))
     };
@@ -211,7 +280,7 @@ pub fn choose(request: GraphicsRequest, facts: &Facts) -> Graphics {
         let why = facts
             .hints_pixels()
             .then(|| "the terminal did not answer the graphics queries".to_string());
-        return Graphics::half_blocks(why);
+        return cells(why);
     };
     // tmux draws sixel itself when it answers with attribute 4; the others must pass through.
     let through_tmux = facts.in_tmux && !(protocol == Protocol::Sixel && facts.sixel());
@@ -220,6 +289,8 @@ pub fn choose(request: GraphicsRequest, facts: &Facts) -> Graphics {
     }
     Graphics {
         protocol: Some(protocol),
+        // Frames drawn while keys arrive stay cheap.
+        cells: GlyphSet::HalfBlock,
         cell: facts.cell(),
         tmux_pane: through_tmux.then_some(facts.tmux_pane),
         why: None,
@@ -234,6 +305,7 @@ mod tests {
     fn pixel_sizes_keep_the_cells_aspect_within_the_budget() {
         let mut g = Graphics {
             protocol: Some(Protocol::Kitty),
+            cells: GlyphSet::HalfBlock,
             cell: CellSize {
                 width: 8,
                 height: 16,

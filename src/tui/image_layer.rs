@@ -152,15 +152,17 @@ impl ImageLayer {
                 out.extend_from_slice(format!("\x1b[{};{}H", at_y + 1, at_x + 1).as_bytes());
                 pieces.iter().for_each(|piece| out.extend_from_slice(piece));
             }
-            // Passthrough reaches the outer terminal, whose cursor tmux does not move: the
-            // cursor is moved there, in the outer terminal's cells, and put back afterwards.
+            // Passthrough reaches the outer terminal, whose cursor tmux puts back where it
+            // wants after each passthrough sequence: the cursor move (in the outer terminal's
+            // cells), the picture and the cursor's return travel in one.
             Some((left, top)) => {
-                let at = format!("\x1b7\x1b[{};{}H", top + at_y + 1, left + at_x + 1);
-                out.extend_from_slice(&passthrough::tmux(at.as_bytes()));
-                for piece in &pieces {
-                    out.extend_from_slice(&passthrough::tmux(piece));
-                }
-                out.extend_from_slice(&passthrough::tmux(b"\x1b8"));
+                let mut inner =
+                    format!("\x1b7\x1b[{};{}H", top + at_y + 1, left + at_x + 1).into_bytes();
+                pieces
+                    .iter()
+                    .for_each(|piece| inner.extend_from_slice(piece));
+                inner.extend_from_slice(b"\x1b8");
+                out.extend_from_slice(&passthrough::tmux(&inner));
             }
         }
         Ok(out)
@@ -183,6 +185,7 @@ mod tests {
     fn kitty_layer() -> ImageLayer {
         ImageLayer::new(Graphics {
             protocol: Some(Protocol::Kitty),
+            cells: crate::terminal_image::GlyphSet::HalfBlock,
             cell: CellSize::default(),
             tmux_pane: None,
             why: None,
@@ -243,12 +246,13 @@ mod tests {
             image: &a,
         }]);
         let text = String::from_utf8(bytes).unwrap();
+        // One passthrough: the cursor move, the picture and the cursor's return together.
         assert!(
-            text.starts_with("\x1bPtmux;\x1b\x1b7\x1b\x1b[4;44H\x1b\\"),
+            text.starts_with("\x1bPtmux;\x1b\x1b7\x1b\x1b[4;44H\x1b\x1b_Ga=T"),
             "{text:?}"
         );
-        assert!(text.contains("\x1bPtmux;\x1b\x1b_Ga=T"), "{text:?}");
-        assert!(text.ends_with("\x1bPtmux;\x1b\x1b8\x1b\\"), "{text:?}");
+        assert!(text.ends_with("\x1b\x1b8\x1b\\"), "{text:?}");
+        assert_eq!(text.matches("\x1bPtmux;").count(), 1, "{text:?}");
     }
 
     #[test]

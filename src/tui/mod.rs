@@ -286,16 +286,16 @@ fn load(path: Option<&Path>, up: crate::scene::UpAxis) -> Result<App, TuiError> 
 }
 
 /// The render jobs the app needs for a picture area of `picture`: in real pixels when `pixels`
-/// and the editor draws with a graphics protocol and no dialog covers the preview, else one
-/// pixel per column and two per row for half blocks.
+/// and the editor draws with a graphics protocol and no dialog covers the preview, else at the
+/// size its glyph set samples (see [`graphics::Graphics::cells_size`]).
 pub fn wanted(app: &App, picture: Rect, pixels: bool) -> Option<Wanted> {
     let pixels = pixels && matches!(app.mode, mode::Mode::Normal | mode::Mode::Edit(_));
     let job = |slot, algorithm, area: Rect| {
-        let half_blocks = (area.width as u32, 2 * area.height as u32);
+        let graphics = app.view.graphics();
         let (width, height) = pixels
-            .then(|| app.view.graphics().pixel_size(area.width, area.height))
+            .then(|| graphics.pixel_size(area.width, area.height))
             .flatten()
-            .unwrap_or(half_blocks);
+            .unwrap_or_else(|| graphics.cells_size(area.width, area.height));
         (area.width > 0 && area.height > 0).then_some(Job {
             slot,
             algorithm,

@@ -47,6 +47,12 @@ impl Editor {
 
     /// Starts `rastray ARGS` in `dir` on a pty of `size` (cells, and pixels when not 0).
     pub fn start_sized(dir: &Path, args: &[&str], size: Winsize) -> Editor {
+        Editor::start_env(dir, args, size, &[])
+    }
+
+    /// Starts `rastray ARGS` in `dir` on a pty of `size`, with the environment variables `env`
+    /// set beside `TERM=xterm-256color` (a `TERM` among them wins).
+    pub fn start_env(dir: &Path, args: &[&str], size: Winsize, env: &[(&str, &str)]) -> Editor {
         let master = openpt(OpenptFlags::RDWR | OpenptFlags::NOCTTY | OpenptFlags::CLOEXEC)
             .expect("open a pty");
         grantpt(&master).expect("grantpt");
@@ -66,7 +72,13 @@ impl Editor {
             .arg(env!("CARGO_BIN_EXE_rastray"))
             .args(args)
             .current_dir(dir)
+            // The terminal is the test's: nothing of the one the tests run in.
+            .env_remove("TMUX")
+            .env_remove("KITTY_WINDOW_ID")
+            .env_remove("COLORTERM")
+            .env_remove("TERM_PROGRAM")
             .env("TERM", "xterm-256color")
+            .envs(env.iter().copied())
             .stdin(Stdio::from(slave.try_clone().expect("dup")))
             .stdout(Stdio::from(slave.try_clone().expect("dup")))
             .stderr(Stdio::from(slave))
@@ -149,6 +161,12 @@ impl Editor {
                 "the editor's output did not arrive within {TIMEOUT:?}"
             );
         }
+    }
+
+    /// Reads whatever arrives within `wait`.
+    pub fn settle(&mut self, wait: Duration) {
+        let start = Instant::now();
+        while start.elapsed() < wait && self.pump(Duration::from_millis(20)) {}
     }
 
     /// Types `bytes` as keys.

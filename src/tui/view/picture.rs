@@ -1,5 +1,6 @@
-//! The preview pane: the rendered image as half blocks or as a picture in real pixels (drawn by
-//! `tui::image_layer` over blank cells), or the three algorithms side by side.
+//! The preview pane: the rendered image in text cells (half blocks, quadrants, sextants or
+//! braille) or as a picture in real pixels (drawn by `tui::image_layer` over blank cells), or the
+//! three algorithms side by side.
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Alignment, Rect};
@@ -7,6 +8,8 @@ use ratatui::text::Line;
 use ratatui::widgets::{Paragraph, Widget};
 
 use super::{compare_panes, millis, pane};
+use crate::terminal_image::GlyphSet;
+use crate::terminal_image::glyph_cells::{self, CellChooser};
 use crate::tui::app::{App, Shot};
 use crate::tui::image_layer::Placement;
 use crate::tui::mode::Mode;
@@ -15,18 +18,76 @@ use crate::tui::preview::{ColorMode, PreviewImage, half_block_each};
 use crate::tui::selection::Focus;
 use crate::tui::theme;
 
-/// An image drawn into cells: cell (c, r) shows pixels (c, 2r) over (c, 2r + 1).
+/// An image drawn into cells: with half blocks, cell (c, r) shows pixels (c, 2r) over
+/// (c, 2r + 1); with a finer set, each cell is the glyph and two colours that best fit the
+/// pixels under it.
 pub struct Picture<'a> {
     pub image: &'a PreviewImage,
     pub mode: ColorMode,
     /// Pixels drawn in the 256-colour palette while the camera moves (see `tui::motion`).
     pub coarse: &'a CoarseMask,
+    /// The glyph set.
+    pub set: GlyphSet,
 }
 
 impl Widget for Picture<'_> {
-    /// Draws the image at one pixel per column and two per row; an image of another size (one
-    /// rendered for real pixels, shown while a dialog is open) is sampled to that grid.
     fn render(self, area: Rect, buf: &mut Buffer) {
+        match self.set {
+            GlyphSet::HalfBlock => self.half_blocks(area, buf),
+            set => self.glyphs(set, area, buf),
+        }
+    }
+}
+
+impl Picture<'_> {
+    /// Draws the image with `set`, resampled to the grid the encoder samples; a cell with any
+    /// coarse pixel under it is drawn in the 256-colour palette.
+    fn glyphs(&self, set: GlyphSet, area: Rect, buf: &mut Buffer) {
+        let (cols, rows) = (u32::from(area.width), u32::from(area.height));
+        if cols == 0 || rows == 0 || self.image.pixels.is_empty() {
+            return;
+        }
+        let image = glyph_cells::fit(self.image, cols, rows);
+        let mut chooser = CellChooser::new(set);
+        let coarse = |col: u32, row: u32| {
+            let Some(mask) = self.coarse.as_ref() else {
+                return false;
+            };
+            let x0 = col * self.image.width / cols;
+            let x1 = ((col + 1) * self.image.width).div_ceil(cols);
+            let y0 = row * self.image.height / rows;
+            let y1 = ((row + 1) * self.image.height).div_ceil(rows);
+            (y0..y1.min(self.image.height)).any(|y| {
+                (x0..x1.min(self.image.width)).any(|x| mask[(y * self.image.width + x) as usize])
+            })
+        };
+        for row in 0..rows {
+            for col in 0..cols {
+                let cell = chooser.choose(&image, col, row);
+                let mode = if coarse(col, row) {
+                    ColorMode::Ansi256
+                } else {
+                    self.mode
+                };
+                let fg = if cell.glyph == ' ' {
+                    theme::TERMINAL_DEFAULT
+                } else {
+                    mode.color(cell.fg)
+                };
+                if let Some(c) = buf.cell_mut((area.x + col as u16, area.y + row as u16)) {
+                    let mut utf8 = [0u8; 4];
+                    c.set_symbol(cell.glyph.encode_utf8(&mut utf8))
+                        .set_fg(fg)
+                        .set_bg(mode.color(cell.bg));
+                }
+            }
+        }
+    }
+
+    /// Draws the image at one pixel per column and two per row; an image of another size (one
+    /// rendered for real pixels, shown while a dialog is open, or with square pixels on cells
+    /// that are not 1:2) is sampled to that grid.
+    fn half_blocks(&self, area: Rect, buf: &mut Buffer) {
         let (grid_w, grid_h) = (u32::from(area.width), 2 * u32::from(area.height));
         let scaled = self.image.width > grid_w || self.image.height > grid_h;
         let sample = |v: u32, grid: u32, size: u32| match scaled {
@@ -113,6 +174,7 @@ fn draw_shot(app: &App, shot: &Shot, area: Rect, buf: &mut Buffer) {
             image: &shot.image,
             mode: app.view.color(),
             coarse: &shot.coarse,
+            set: app.view.graphics().cells,
         }
         .render(area, buf);
     }

@@ -41,7 +41,7 @@ impl Widget for Properties<'_> {
             .enumerate()
             .map(|(i, (key, value))| {
                 let label = Span::styled(
-                    format!("{:<width$.width$} ", key.label(&part)),
+                    format!("{:<width$} ", shorten(&key.label(&part), width)),
                     theme::LABEL,
                 );
                 match &app.mode {
@@ -117,9 +117,63 @@ pub fn label_width(pane_width: u16, values: impl Iterator<Item = usize>) -> usiz
     LABEL_COLUMNS.min(room.saturating_sub(longest_value).max(3))
 }
 
+/// `label` in at most `width` columns, keeping the part that tells it from its neighbours: a
+/// dotted label (`camera.target.x`) keeps its last part whole and shortens the parts before it,
+/// the first ones first, to one letter each (`cam.target.x`, `c.t.x`); then it drops leading
+/// parts after an ellipsis (`…x`); other labels are cut at the end.
+pub fn shorten(label: &str, width: usize) -> String {
+    let length = |parts: &[String]| {
+        parts.iter().map(|p| p.chars().count()).sum::<usize>() + parts.len().saturating_sub(1)
+    };
+    let mut parts: Vec<String> = label.split('.').map(str::to_string).collect();
+    if length(&parts) <= width {
+        return label.to_string();
+    }
+    if parts.len() == 1 {
+        return label.chars().take(width).collect();
+    }
+    let last = parts.len() - 1;
+    for i in 0..last {
+        let excess = length(&parts).saturating_sub(width);
+        let keep = parts[i].chars().count().saturating_sub(excess).max(1);
+        parts[i] = parts[i].chars().take(keep).collect();
+    }
+    if length(&parts) <= width {
+        return parts.join(".");
+    }
+    while length(&parts) + 1 > width && parts.len() > 1 {
+        parts.remove(0);
+    }
+    format!("…{}", parts.join("."))
+        .chars()
+        .take(width)
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
-    use super::label_width;
+    use super::{label_width, shorten};
+
+    #[test]
+    fn shortened_labels_keep_the_part_that_tells_them_apart() {
+        assert_eq!(shorten("camera.target.x", 15), "camera.target.x");
+        assert_eq!(shorten("camera.target.x", 12), "cam.target.x");
+        assert_eq!(shorten("camera.target.y", 9), "c.targe.y");
+        assert_eq!(shorten("camera.target.z", 5), "c.t.z");
+        assert_eq!(shorten("camera.target.z", 3), "…z");
+        assert_eq!(shorten("reflection", 8), "reflecti");
+        for width in 3..16 {
+            let labels: Vec<String> = ["x", "y", "z"]
+                .iter()
+                .map(|axis| shorten(&format!("camera.target.{axis}"), width))
+                .collect();
+            assert!(labels.iter().all(|l| l.chars().count() <= width));
+            assert!(
+                labels[0] != labels[1] && labels[1] != labels[2],
+                "{labels:?}"
+            );
+        }
+    }
 
     #[test]
     fn labels_give_way_before_values() {
