@@ -41,14 +41,7 @@ fn gradient_png(w: u32, h: u32) -> Vec<u8> {
     let image = image::RgbImage::from_fn(w, h, |x, y| {
         image::Rgb([(x * 255 / w) as u8, (y * 255 / h) as u8, 0])
     });
-    let mut bytes = Vec::new();
-    image
-        .write_to(
-            &mut std::io::Cursor::new(&mut bytes),
-            image::ImageFormat::Png,
-        )
-        .unwrap();
-    bytes
+    common::textured_quad::png_bytes(&image)
 }
 
 /// Two squares side by side facing +Z, the left one `left`, the right one `right`, with texture
