@@ -102,9 +102,13 @@ fn each_material_is_a_part_with_its_colour_in_every_algorithm() {
             Vec2::new(1.0, 0.0)
         ]
     );
+    // The library, then the texture it names (watched by the editor's live reload).
     assert_eq!(
         model.material_files,
-        [dir.join("my materials.mtl").canonicalize().unwrap()]
+        [
+            dir.join("my materials.mtl").canonicalize().unwrap(),
+            dir.join("tex/wood grain.png").canonicalize().unwrap()
+        ]
     );
 
     // Ambient 1 and no lights: each pixel is its albedo. The blue square is textured, which the
