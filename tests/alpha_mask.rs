@@ -29,12 +29,13 @@ fn checker_alpha() -> image::RgbaImage {
 }
 
 /// The glTF quad textured by the checker, with `material_extra` in its material, written as
-/// `name` in the `alpha` folder.
+/// `name` in a folder of its own (tests run at once: none rewrites a texture another reads).
 fn masked_quad(name: &str, material_extra: &str) -> std::path::PathBuf {
-    write("alpha", "checker.png", &png_bytes(&checker_alpha()));
+    let folder = format!("alpha-{name}");
+    write(&folder, "checker.png", &png_bytes(&checker_alpha()));
     let uvs = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
     let gltf = quad_gltf("checker.png", "{}", material_extra, 1.0, uvs);
-    write("alpha", name, gltf.as_bytes())
+    write(&folder, name, gltf.as_bytes())
 }
 
 /// The quad of `model` filling a 60° view square-on (pixel (i, j)'s centre meets texel (i,

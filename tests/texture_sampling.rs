@@ -79,11 +79,11 @@ fn nearest(wrap: Wrap) -> String {
     )
 }
 
-/// Renders the glTF text `gltf` (written as `name`) square-on in every algorithm and checks
-/// each against `want` (30 dB: a pixel centre within rounding of a texel edge may read its
-/// neighbour).
-fn renders_as(name: &str, gltf: &str, want: &[u8], what: &str) {
-    let model = write("sampling", name, gltf.as_bytes());
+/// Renders the glTF text `gltf` (written as `name` in `folder`, whose textures only one test
+/// writes) square-on in every algorithm and checks each against `want` (30 dB: a pixel centre
+/// within rounding of a texel edge may read its neighbour).
+fn renders_as(folder: &str, name: &str, gltf: &str, want: &[u8], what: &str) {
+    let model = write(folder, name, gltf.as_bytes());
     for algorithm in ALGORITHMS {
         let got = render(&scene_of(&model, ""), algorithm, SIDE, 1).to_srgb8();
         let psnr = common::psnr(&got, want);
@@ -93,7 +93,7 @@ fn renders_as(name: &str, gltf: &str, want: &[u8], what: &str) {
 
 #[test]
 fn repeat_clamp_and_mirror_wrap_coordinates_outside_the_image_as_opengl_does() {
-    write("sampling", "blocks.png", &png_bytes(&blocks()));
+    write("wrap", "blocks.png", &png_bytes(&blocks()));
     // Coordinates from −1 to 2 across and down: three copies of the image's span.
     let uvs = [[-1.0, 2.0], [2.0, 2.0], [2.0, -1.0], [-1.0, -1.0]];
     let spread = |s: f32, t: f32| (3.0 * s - 1.0, 3.0 * t - 1.0);
@@ -103,6 +103,7 @@ fn repeat_clamp_and_mirror_wrap_coordinates_outside_the_image_as_opengl_does() {
             let gltf = quad_gltf("blocks.png", &nearest(wrap), "", 1.0, uvs);
             let want = expected(&blocks(), wrap, spread);
             renders_as(
+                "wrap",
                 &format!("{wrap:?}.gltf"),
                 &gltf,
                 &want,
@@ -117,7 +118,7 @@ fn repeat_clamp_and_mirror_wrap_coordinates_outside_the_image_as_opengl_does() {
 
 #[test]
 fn khr_texture_transform_offsets_and_scales_the_coordinates() {
-    write("sampling", "blocks.png", &png_bytes(&blocks()));
+    write("transform", "blocks.png", &png_bytes(&blocks()));
     let uvs = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
     let gltf = quad_gltf("blocks.png", &nearest(Wrap::Repeat), "", 1.0, uvs)
         .replacen(
@@ -132,7 +133,13 @@ fn khr_texture_transform_offsets_and_scales_the_coordinates() {
         );
     // uv' = offset + scale·uv.
     let want = expected(&blocks(), Wrap::Repeat, |s, t| (0.375 + 2.0 * s, 1.5 * t));
-    renders_as("transformed.gltf", &gltf, &want, "KHR_texture_transform");
+    renders_as(
+        "transform",
+        "transformed.gltf",
+        &gltf,
+        &want,
+        "KHR_texture_transform",
+    );
     let plain = expected(&blocks(), Wrap::Repeat, |s, t| (s, t));
     assert!(
         common::psnr(&want, &plain) < 20.0,
@@ -158,7 +165,7 @@ fn a_jpeg_texture_and_a_data_uri_image_render_as_their_images() {
     image::codecs::jpeg::JpegEncoder::new_with_quality(&mut jpeg, 95)
         .encode_image(&image)
         .unwrap();
-    write("sampling", "gradient.jpg", &jpeg);
+    write("images", "gradient.jpg", &jpeg);
     let uvs = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
     let data_uri = format!(
         "data:image/png;base64,{}",
@@ -169,6 +176,6 @@ fn a_jpeg_texture_and_a_data_uri_image_render_as_their_images() {
         (data_uri.as_str(), "data_uri.gltf"),
     ] {
         let gltf = quad_gltf(uri, "{}", "", 1.0, uvs);
-        renders_as(name, &gltf, image.as_raw(), name);
+        renders_as("images", name, &gltf, image.as_raw(), name);
     }
 }
