@@ -101,25 +101,58 @@ pub struct World {
     pub falloff: Option<Falloff>,
 }
 
-/// Loaded model files (OBJ, STL, PLY or glTF) keyed by path, reloaded when the file changes on disk.
+/// Loaded model files (OBJ, STL, PLY or glTF) keyed by path, reloaded when the file or a file it
+/// pulls in (an MTL library, a texture, a glTF buffer or image) changes on disk.
 #[derive(Debug, Default)]
 pub struct MeshFileCache {
-    models: HashMap<PathBuf, (Option<SystemTime>, Arc<MeshFile>)>,
+    models: HashMap<PathBuf, CachedModel>,
+}
+
+/// A model as read, with the modification times of its file and of its companion files (in
+/// [`MeshFile::companion_files`] order) then.
+#[derive(Debug)]
+struct CachedModel {
+    modified: Option<SystemTime>,
+    companions: Vec<Option<SystemTime>>,
+    model: Arc<MeshFile>,
+}
+
+/// The modification time of the file at `path`, `None` when it cannot be had.
+fn modified(path: &Path) -> Option<SystemTime> {
+    std::fs::metadata(path).and_then(|m| m.modified()).ok()
 }
 
 impl MeshFileCache {
-    /// The model at `path`, from the cache when the file is unchanged.
+    /// The model at `path`, from the cache when neither it nor its companion files changed.
     pub fn get(&mut self, path: &Path) -> Result<Arc<MeshFile>, MeshFileError> {
-        let modified = std::fs::metadata(path).and_then(|m| m.modified()).ok();
-        if let Some((when, model)) = self.models.get(path)
-            && *when == modified
-            && modified.is_some()
+        let when = modified(path);
+        if let Some(CachedModel {
+            modified: seen,
+            companions,
+            model,
+        }) = self.models.get(path)
+            && *seen == when
+            && when.is_some()
+            && model
+                .companion_files()
+                .iter()
+                .zip(companions)
+                .all(|(file, seen)| modified(file) == *seen)
         {
             return Ok(model.clone());
         }
         let model = Arc::new(MeshFile::load(path)?);
-        self.models
-            .insert(path.to_path_buf(), (modified, model.clone()));
+        let companions = model
+            .companion_files()
+            .iter()
+            .map(|f| modified(f))
+            .collect();
+        let cached = CachedModel {
+            modified: when,
+            companions,
+            model: model.clone(),
+        };
+        self.models.insert(path.to_path_buf(), cached);
         Ok(model)
     }
 }

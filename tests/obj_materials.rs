@@ -41,14 +41,7 @@ fn gradient_png(w: u32, h: u32) -> Vec<u8> {
     let image = image::RgbImage::from_fn(w, h, |x, y| {
         image::Rgb([(x * 255 / w) as u8, (y * 255 / h) as u8, 0])
     });
-    let mut bytes = Vec::new();
-    image
-        .write_to(
-            &mut std::io::Cursor::new(&mut bytes),
-            image::ImageFormat::Png,
-        )
-        .unwrap();
-    bytes
+    common::textured_quad::png_bytes(&image)
 }
 
 /// Two squares side by side facing +Z, the left one `left`, the right one `right`, with texture
@@ -109,9 +102,13 @@ fn each_material_is_a_part_with_its_colour_in_every_algorithm() {
             Vec2::new(1.0, 0.0)
         ]
     );
+    // The library, then the texture it names (watched by the editor's live reload).
     assert_eq!(
         model.material_files,
-        [dir.join("my materials.mtl").canonicalize().unwrap()]
+        [
+            dir.join("my materials.mtl").canonicalize().unwrap(),
+            dir.join("tex/wood grain.png").canonicalize().unwrap()
+        ]
     );
 
     // Ambient 1 and no lights: each pixel is its albedo. The blue square is textured, which the

@@ -4,12 +4,13 @@
 
 mod common;
 
+use common::textured_quad::{png_bytes, quad_gltf, render, scene_of, write};
+
 use std::path::{Path, PathBuf};
 
 use base64::Engine;
 use base64::engine::general_purpose::STANDARD;
-use rastray::Frame;
-use rastray::render::{Algorithm, RenderOptions};
+use rastray::render::Algorithm;
 
 const ALGORITHMS: [Algorithm; 3] = [Algorithm::Gouraud, Algorithm::Phong, Algorithm::Ray];
 
@@ -29,55 +30,6 @@ fn letter_image() -> image::RgbImage {
             image::Rgb([(40 + 3 * x) as u8, (40 + 3 * y) as u8, 90])
         }
     })
-}
-
-/// Writes `bytes` to `name` in a folder of its own (`folder` under the scratch folder).
-fn write(folder: &str, name: &str, bytes: &[u8]) -> PathBuf {
-    let dir = common::scratch().join(folder);
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    std::fs::write(&path, bytes).unwrap();
-    path
-}
-
-/// A glTF file of the quad [-1, 1]² at z = 0 facing +Z, textured with image `uri` through a
-/// sampler `sampler` (JSON), `material_extra` added to its material, and `uvs` (glTF's
-/// convention: (0, 0) the image's top-left) at the corners (-1, -1), (1, -1), (1, 1), (-1, 1).
-fn quad_gltf(
-    uri: &str,
-    sampler: &str,
-    material_extra: &str,
-    scale: f32,
-    uvs: [[f32; 2]; 4],
-) -> String {
-    let positions: [[f32; 3]; 4] = [[-1., -1., 0.], [1., -1., 0.], [1., 1., 0.], [-1., 1., 0.]];
-    let mut bytes = Vec::new();
-    for p in positions {
-        for c in p {
-            bytes.extend((c * scale).to_le_bytes());
-        }
-    }
-    for uv in uvs {
-        for c in uv {
-            bytes.extend(c.to_le_bytes());
-        }
-    }
-    for i in [0u16, 1, 2, 0, 2, 3] {
-        bytes.extend(i.to_le_bytes());
-    }
-    let data = STANDARD.encode(&bytes);
-    let s = scale;
-    format!(
-        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
-"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"TEXCOORD_0":1}},"indices":2,"material":0}}]}}],
-"materials":[{{"pbrMetallicRoughness":{{"baseColorTexture":{{"index":0}},"metallicFactor":0.0,"roughnessFactor":1.0}}{material_extra}}}],
-"textures":[{{"source":0,"sampler":0}}],"samplers":[{sampler}],"images":[{{"uri":"{uri}"}}],
-"buffers":[{{"byteLength":{len},"uri":"data:application/octet-stream;base64,{data}"}}],
-"bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":48}},{{"buffer":0,"byteOffset":48,"byteLength":32}},{{"buffer":0,"byteOffset":80,"byteLength":12}}],
-"accessors":[{{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-{s},-{s},0],"max":[{s},{s},0]}},
-{{"bufferView":1,"componentType":5126,"count":4,"type":"VEC2"}},{{"bufferView":2,"componentType":5123,"count":6,"type":"SCALAR"}}]}}"#,
-        len = bytes.len()
-    )
 }
 
 /// An ASCII PLY of the same quad, textured by `comment TextureFile texture`, with PLY's UVs
@@ -102,40 +54,9 @@ fn quad_obj(texture: &str) -> (String, String) {
     )
 }
 
-/// The object of `model` with `rest` (its keys) lit by ambient 1 alone, seen square-on from where the quad just fills a 60° view: pixel
-/// (i, j)'s centre meets texel (i, j)'s centre.
-fn scene_of(model: &Path, rest: &str) -> rastray::Scene {
-    common::scene(&format!(
-        "background = [0.0, 0.0, 0.0]\nambient = 1.0\n[camera]\n\
-         position = [0.0, 0.0, {d}]\ntarget = [0.0, 0.0, 0.0]\nfov = 60.0\n[[object]]\n\
-         type = \"mesh\"\npath = {:?}\n{rest}\n",
-        model.display().to_string(),
-        d = 1.0 / 30f32.to_radians().tan(),
-    ))
-}
-
-fn render(scene: &rastray::Scene, algorithm: Algorithm, size: u32, samples: u32) -> Frame {
-    let mut options = RenderOptions::new(algorithm, size, size);
-    options.shadows = false;
-    options.max_depth = Some(0);
-    options.samples = samples;
-    common::render(&common::world(scene), &scene.camera, options).0
-}
-
 /// `image` upside down.
 fn flipped(image: &image::RgbImage) -> Vec<u8> {
     image::imageops::flip_vertical(image).into_raw()
-}
-
-fn png_bytes(image: &image::RgbImage) -> Vec<u8> {
-    let mut bytes = Vec::new();
-    image
-        .write_to(
-            &mut std::io::Cursor::new(&mut bytes),
-            image::ImageFormat::Png,
-        )
-        .unwrap();
-    bytes
 }
 
 #[test]
@@ -298,5 +219,36 @@ fn a_missing_or_absurd_texture_is_a_warning_that_names_it_and_the_model_draws_un
         let scene = scene_of(&ply, "");
         let world = common::world(&scene);
         assert!(world.objects.iter().all(|o| !o.is_textured()));
+    }
+}
+
+#[test]
+fn info_lists_each_gltf_parts_texture_by_name_with_its_size() {
+    let png = png_bytes(&letter_image());
+    write("info", "letter.png", &png);
+    let uvs = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+    let by_uri = quad_gltf("letter.png", "{}", "", 1.0, uvs);
+    // The same image embedded, under a name of its own.
+    let data_uri = format!("data:image/png;base64,{}", STANDARD.encode(&png));
+    let named = quad_gltf(&data_uri, "{}", "", 1.0, uvs).replacen(
+        r#""images":[{"uri""#,
+        r#""images":[{"name":"letter","uri""#,
+        1,
+    );
+    let folder = write("info", "by_uri.gltf", by_uri.as_bytes());
+    write("info", "named.gltf", named.as_bytes());
+    let folder = folder.parent().unwrap();
+    for (model, expected) in [
+        ("by_uri.gltf", "texture letter.png 64×64"),
+        ("named.gltf", "texture letter (data URI) 64×64"),
+    ] {
+        let o = common::rastray_in(&["info", model], folder);
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        assert!(o.status.success(), "{model}: {stdout}");
+        let part = stdout
+            .lines()
+            .find(|l| l.contains("primitive 0"))
+            .unwrap_or_else(|| panic!("{model}: no part line in {stdout}"));
+        assert!(part.contains(expected), "{model}: {part}");
     }
 }

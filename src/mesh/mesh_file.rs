@@ -96,7 +96,11 @@ impl MeshFile {
                     label: Some(&p.label),
                     geometry: &p.geometry,
                     material: p.material,
-                    texture: None,
+                    texture: p
+                        .appearance
+                        .base_color
+                        .as_ref()
+                        .map(|b| (b.texture.name.as_str(), &b.texture)),
                     appearance: p.appearance.clone(),
                 })
                 .collect(),
@@ -168,12 +172,14 @@ impl MeshFile {
         }
     }
 
-    /// The files read beside the model (glTF buffers, MTL libraries), in the order named.
+    /// The files the model pulls in (glTF buffers and images, MTL libraries and their
+    /// textures, a PLY's texture), in the order named.
     pub fn companion_files(&self) -> &[PathBuf] {
         match self {
             MeshFile::Gltf(model) => &model.buffer_files,
             MeshFile::Obj(model) => &model.material_files,
-            _ => &[],
+            MeshFile::Ply(model) => &model.texture_files,
+            MeshFile::Stl(_) => &[],
         }
     }
 }

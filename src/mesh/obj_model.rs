@@ -44,7 +44,8 @@ pub struct ObjModel {
     pub parts: Vec<ObjPart>,
     /// What was skipped: libraries, lines of them, textures.
     pub warnings: Vec<ImportWarning>,
-    /// The MTL files read, resolved, in the order the file names them.
+    /// The MTL files read, then the `map_Kd` textures named (read or not, to be watched),
+    /// resolved, in the order the file names them.
     pub material_files: Vec<PathBuf>,
 }
 
@@ -84,7 +85,15 @@ pub fn load_obj_model(path: &Path) -> Result<ObjModel, ObjError> {
         if let (Some(name), None) = (&name, mtl) {
             warnings.push(ImportWarning::UnknownMaterial { name: name.clone() });
         }
-        let texture = mtl.and_then(|m| texture_of(m, &folder, &mut textures, &mut warnings));
+        let texture = mtl.and_then(|m| {
+            texture_of(
+                m,
+                &folder,
+                &mut textures,
+                &mut warnings,
+                &mut material_files,
+            )
+        });
         let part_geometry = match (&geometry, whole) {
             (Some(_), true) => geometry.take().unwrap_or_default(),
             (Some(all), false) => all.subset(&triangles),
@@ -163,15 +172,18 @@ fn library_names<'a>(text: &'a str, folder: &ModelFolder) -> Vec<&'a str> {
 }
 
 /// The `map_Kd` of `material`, read inside `folder` once per name (`loaded` keeps what was
-/// read), or `None` with a warning when it cannot be read.
+/// read), or `None` with a warning when it cannot be read. The file it resolves to is added
+/// to `files` once.
 fn texture_of(
     material: &MtlMaterial,
     folder: &ModelFolder,
     loaded: &mut HashMap<String, Option<Arc<Texture>>>,
     warnings: &mut Vec<ImportWarning>,
+    files: &mut Vec<PathBuf>,
 ) -> Option<(String, Arc<Texture>)> {
     let reference = material.diffuse_map.as_ref()?;
     let texture = loaded.entry(reference.clone()).or_insert_with(|| {
+        files.extend(folder.resolve(reference, ReferenceKind::Path).ok());
         load_texture(folder, reference, ReferenceKind::Path)
             .map_err(|error| {
                 warnings.push(ImportWarning::TextureNotRead {

@@ -221,7 +221,7 @@ fn render_frame(
         }
         Algorithm::Ray => {
             let accel = prepared.accel().expect("prepared for the ray tracer");
-            primary_coverage(accel, view, progress, covered)
+            primary_coverage(accel, world, view, progress, covered)
         }
     };
     // Draws `view` into `out`; with alpha, finds the coverage first and leaves the background
@@ -251,7 +251,7 @@ fn render_frame(
             }
             Algorithm::Ray => {
                 let accel = prepared.accel().expect("prepared for the ray tracer");
-                primary_hits(accel, view, progress, hits)
+                primary_hits(accel, world, view, progress, hits)
             }
         }
     };

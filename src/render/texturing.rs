@@ -16,7 +16,7 @@
 use glam::{Vec2, Vec3, Vec4};
 
 use crate::mesh::Mesh;
-use crate::mesh::texture::TextureBinding;
+use crate::mesh::texture::{AlphaMode, TextureBinding};
 use crate::render::camera::View;
 use crate::world::World;
 
@@ -24,12 +24,26 @@ use crate::world::World;
 /// 1/64) the level stops growing, as a GPU's anisotropy limit does.
 const MIN_COSINE: f32 = 1.0 / 64.0;
 
+/// A part's alpha cut-out (glTF `alphaMode: MASK`) as the renderers test it.
+struct Mask<'a> {
+    /// A point whose alpha is below this is no surface.
+    cutoff: f32,
+    /// The base colour factor's alpha.
+    factor: f32,
+    /// The texture whose alpha multiplies in, with the mesh's coordinates, when drawn textured.
+    texture: Option<(&'a TextureBinding, &'a [Vec2])>,
+}
+
 /// The textures of a world's objects and the cone spread of the view.
 pub struct ObjectTextures<'a> {
     /// Per object, its texture and its mesh's texture coordinates, when it is drawn textured.
     textured: Vec<Option<(&'a TextureBinding, &'a [Vec2])>>,
     /// Whether any object is textured: worlds without textures skip every lookup.
     pub any: bool,
+    /// Per object, its alpha cut-out, when its appearance is `MASK`.
+    masks: Vec<Option<Mask<'a>>>,
+    /// Whether any object is cut out: worlds without masks never test alpha.
+    pub any_mask: bool,
     /// The angle a pixel spans, radians.
     spread: f32,
     /// The width a pixel spans at distance 0, world units (orthographic views; 0 in perspective).
@@ -61,12 +75,73 @@ impl<'a> ObjectTextures<'a> {
                 _ => None,
             })
             .collect();
+        let masks: Vec<_> = world
+            .objects
+            .iter()
+            .zip(&textured)
+            .map(|(o, texture)| match o.appearance.alpha_mode {
+                AlphaMode::Opaque => None,
+                AlphaMode::Mask { cutoff } => Some(Mask {
+                    cutoff,
+                    factor: o.appearance.alpha_factor,
+                    texture: *texture,
+                }),
+            })
+            .collect();
         ObjectTextures {
             any: textured.iter().any(Option::is_some),
             textured,
+            any_mask: masks.iter().any(Option::is_some),
+            masks,
             spread,
             base: 0.0,
         }
+    }
+
+    /// Whether object `object` is cut out by alpha (its appearance is `MASK`).
+    #[inline]
+    pub fn is_masked(&self, object: usize) -> bool {
+        self.masks[object].is_some()
+    }
+
+    /// Whether the point at barycentrics (`u`, `v`) (the weights of the second and third
+    /// corners) of triangle `triangle` of object `object` (whose mesh is `mesh`) is cut out:
+    /// its alpha, the base colour factor's times the texture's (read as the colour is, at path
+    /// length `distance` along unit `dir`, the normal interpolated there), is below the cutoff.
+    /// Always false on an object that is not masked.
+    #[allow(clippy::too_many_arguments)]
+    pub fn is_cut(
+        &self,
+        object: usize,
+        mesh: &Mesh,
+        triangle: u32,
+        u: f32,
+        v: f32,
+        distance: f32,
+        dir: Vec3,
+    ) -> bool {
+        let Some(mask) = &self.masks[object] else {
+            return false;
+        };
+        let mut alpha = mask.factor;
+        if let Some((binding, uvs)) = mask.texture {
+            let abc = mesh.triangles[triangle as usize].map(|i| i as usize);
+            let w = [1.0 - u - v, u, v];
+            let uv = abc.map(|i| uvs[i]);
+            let p = abc.map(|i| mesh.positions[i]);
+            let at = uv[0] * w[0] + uv[1] * w[1] + uv[2] * w[2];
+            let n = abc
+                .iter()
+                .zip(w)
+                .map(|(&i, w)| mesh.normals[i] * w)
+                .sum::<Vec3>()
+                .normalize_or_zero();
+            let density = texel_density(p, uv);
+            alpha *= self
+                .sample_binding(binding, at, density, distance, n.dot(dir))
+                .w;
+        }
+        alpha < mask.cutoff
     }
 
     /// Whether object `object` is drawn textured.
@@ -94,6 +169,19 @@ impl<'a> ObjectTextures<'a> {
         let Some((binding, _)) = self.textured[object] else {
             return Vec4::ONE;
         };
+        self.sample_binding(binding, uv, density, distance, cos)
+    }
+
+    /// [`ObjectTextures::sample`] of `binding`.
+    #[inline]
+    fn sample_binding(
+        &self,
+        binding: &TextureBinding,
+        uv: Vec2,
+        density: f32,
+        distance: f32,
+        cos: f32,
+    ) -> Vec4 {
         let texture = &binding.texture;
         let (w, h) = texture.size();
         let width = self.base + self.spread * distance;

@@ -1,6 +1,8 @@
-//! Live reload: the open scene file and the model files it uses, watched by polling their
-//! modification time and length, so that a scene edited in another program (a text editor in
-//! the next pane, a modeller writing an OBJ) shows up in the preview.
+//! Live reload: the open scene file, the model files it uses and the files those pull in (MTL
+//! libraries, textures, glTF buffers and images, as the last world built read them), watched by
+//! polling their modification time and length, so that a scene edited in another program (a
+//! text editor in the next pane, a modeller writing an OBJ, a paint program saving a texture)
+//! shows up in the preview.
 //!
 //! Polling costs one `stat` per watched file every [`POLL_EVERY`]: nothing to set up, nothing
 //! that differs between platforms or file systems (network mounts included).
@@ -31,6 +33,17 @@ fn stamp(path: &Path) -> Option<Stamp> {
     })
 }
 
+/// Each of `paths` with its stamp now.
+fn stamped(paths: Vec<PathBuf>) -> HashMap<PathBuf, Option<Stamp>> {
+    paths
+        .into_iter()
+        .map(|p| {
+            let s = stamp(&p);
+            (p, s)
+        })
+        .collect()
+}
+
 /// Which of the watched files were written since the last look.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DiskChange {
@@ -38,7 +51,7 @@ pub enum DiskChange {
     None,
     /// The scene file was (its models may have been too).
     Scene,
-    /// Only model files the scene uses were.
+    /// Only model files the scene uses, or files they pull in, were.
     Models,
 }
 
@@ -53,6 +66,8 @@ pub struct DiskWatch {
     last_poll: Option<Instant>,
     scene: Option<(PathBuf, Option<Stamp>)>,
     models: HashMap<PathBuf, Option<Stamp>>,
+    /// The files the models pulled in when the world was last built.
+    pulled_in: HashMap<PathBuf, Option<Stamp>>,
 }
 
 impl DiskWatch {
@@ -60,13 +75,13 @@ impl DiskWatch {
     /// save) is not reported back as a change.
     pub fn sync(&mut self, doc: &Document) {
         self.scene = doc.path().map(|p| (p.to_path_buf(), stamp(p)));
-        self.models = model_paths(doc)
-            .into_iter()
-            .map(|p| {
-                let s = stamp(&p);
-                (p, s)
-            })
-            .collect();
+        self.models = stamped(model_paths(doc));
+    }
+
+    /// Watches `files`, which the models of the world just built read (as they are now: the
+    /// world has them so).
+    pub fn watch_model_files(&mut self, files: Vec<PathBuf>) {
+        self.pulled_in = stamped(files);
     }
 
     /// Looks at the files of `doc`, at most once every [`POLL_EVERY`] (by `now`), and says which
@@ -91,6 +106,13 @@ impl DiskWatch {
             models.insert(path, now_seen);
         }
         self.models = models;
+        for (path, seen) in &mut self.pulled_in {
+            let now_seen = stamp(path);
+            if written(*seen, now_seen) {
+                change = DiskChange::Models;
+            }
+            *seen = now_seen;
+        }
         match (doc.path(), &mut self.scene) {
             (Some(path), Some((seen_path, seen))) if seen_path == path => {
                 let now_seen = stamp(path);

@@ -203,7 +203,9 @@ pub fn run(
                     if reply.id() == state.latest
                         || matches!(
                             reply,
-                            RenderReply::Warned { .. } | RenderReply::Bounds { .. }
+                            RenderReply::Warned { .. }
+                                | RenderReply::Bounds { .. }
+                                | RenderReply::ModelFiles { .. }
                         ) =>
                 {
                     state.arrived(&reply);

@@ -106,6 +106,13 @@ pub enum RenderReply {
         id: u64,
         bounds: Option<(glam::Vec3, glam::Vec3)>,
     },
+    /// The model files a newly built world read and the files they pulled in (MTL libraries,
+    /// textures, glTF buffers and images), for live reload to watch; sent when there are some,
+    /// or were some for the world before.
+    ModelFiles {
+        id: u64,
+        files: Vec<std::path::PathBuf>,
+    },
     /// The size, area, closure and volume of the selected scene object `object` (all its
     /// parts, welded, world units), sent when the selection or the world changes and the
     /// object has at most [`MEASURED_TRIANGLES`] triangles.
@@ -129,6 +136,7 @@ impl RenderReply {
             | RenderReply::Measured { id, .. }
             | RenderReply::Warned { id, .. }
             | RenderReply::Bounds { id, .. }
+            | RenderReply::ModelFiles { id, .. }
             | RenderReply::Shape { id, .. } => *id,
         }
     }
@@ -185,6 +193,8 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
     let mut frame = Frame::default();
     // The warnings of the last world built.
     let mut warned: Vec<Warning> = Vec::new();
+    // Whether the last world built read any model files.
+    let mut pulled_in = false;
     // The world generation and scene object last measured for the properties pane.
     let mut measured: Option<(u64, usize)> = None;
     while let Ok(mut request) = rx.recv() {
@@ -213,6 +223,14 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
                         id: request.id,
                         bounds: w.bounds(),
                     });
+                    // While no model pulled any in, and none did before, nothing is sent.
+                    if !report.inputs.is_empty() || pulled_in {
+                        pulled_in = !report.inputs.is_empty();
+                        reply(RenderReply::ModelFiles {
+                            id: request.id,
+                            files: report.inputs,
+                        });
+                    }
                     let (w, s) = (Arc::new(w), Arc::<[_]>::from(report.sources));
                     world = Some((generation, w.clone(), s.clone()));
                     (w, s)

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod model_invariants;
+pub mod textured_quad;
 
 use std::path::Path;
 use std::sync::Arc;

@@ -66,7 +66,7 @@ impl<'a> ImageCache<'a> {
     fn decode(&mut self, image: &::gltf::Image) -> Result<Arc<Texture>, String> {
         let (name, bytes) = match image.source() {
             ::gltf::image::Source::View { view, .. } => {
-                let name = format!("image {} (buffer view {})", image.index(), view.index());
+                let name = named(image, &format!("buffer view {}", view.index()));
                 let bytes = self
                     .buffers
                     .get(view.buffer().index())
@@ -76,9 +76,9 @@ impl<'a> ImageCache<'a> {
             }
             ::gltf::image::Source::Uri { uri, .. } => {
                 let name = if uri.starts_with("data:") {
-                    format!("image {} (data URI)", image.index())
+                    named(image, "data URI")
                 } else {
-                    uri.to_string()
+                    image.name().map_or_else(|| uri.to_string(), str::to_string)
                 };
                 let bytes = read_uri(uri, self.folder, self.files)
                     .map_err(|reason| format!("texture {name}: {reason}"))?;
@@ -88,6 +88,15 @@ impl<'a> ImageCache<'a> {
         decode_texture(&bytes, &name)
             .map(Arc::new)
             .map_err(|e| e.to_string())
+    }
+}
+
+/// The name `image` goes by in messages and `info`: its own name, or its index, with `source`
+/// (where its bytes are) beside either.
+fn named(image: &::gltf::Image, source: &str) -> String {
+    match image.name() {
+        Some(name) => format!("{name} ({source})"),
+        None => format!("image {} ({source})", image.index()),
     }
 }
 

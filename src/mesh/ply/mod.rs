@@ -19,7 +19,7 @@ mod plan;
 mod scalar;
 
 use std::io::{BufReader, Read};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 pub use error::{PlyError, PlyProblem};
 pub use header::PlyEncoding;
@@ -50,6 +50,8 @@ pub struct PlyModel {
     pub appearance: Appearance,
     /// Why the named texture is not drawn (missing, outside the folder, not an image).
     pub warnings: Vec<ImportWarning>,
+    /// The texture's file, resolved inside the model's folder (read or not, to be watched).
+    pub texture_files: Vec<PathBuf>,
 }
 
 /// Reads the PLY file at `path`: a regular file of at most [`MAX_MODEL_BYTES`](crate::input_file::MAX_MODEL_BYTES), at most
@@ -117,7 +119,16 @@ pub fn load_ply(path: &Path) -> Result<PlyModel, PlyError> {
         Some(name) => texture_appearance(path, name),
         None => (Appearance::plain(), Vec::new()),
     };
+    let texture_files = header
+        .texture
+        .iter()
+        .filter_map(|name| {
+            let folder = ModelFolder::of(path).ok()?;
+            folder.resolve(name, ReferenceKind::Path).ok()
+        })
+        .collect();
     Ok(PlyModel {
+        texture_files,
         geometry,
         encoding: header.encoding,
         texture: header.texture,

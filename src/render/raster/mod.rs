@@ -2,6 +2,7 @@
 //! (`fragments`), to a shader; Gouraud lights the vertices and interpolates the colour, Phong
 //! interpolates the normal and lights every pixel.
 
+mod alpha_cut;
 mod colored;
 mod coverage;
 mod fragment_texels;

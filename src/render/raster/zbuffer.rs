@@ -17,6 +17,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::alpha_cut::CutTest;
 use super::fragments::{Fragments, Packer, Run};
 #[cfg(target_arch = "x86_64")]
 use super::scan_avx2::{Avx2, Band};
@@ -63,6 +64,7 @@ where
     let orthographic = view.orthographic;
     // The depth buffer before any triangle: below every 1/w (perspective), or every −w.
     let nothing = if orthographic { f32::NEG_INFINITY } else { 0.0 };
+    let cut = CutTest::of(world, view);
     let drawn = out
         .par_chunks_mut((bands.rows * width) as usize)
         .enumerate()
@@ -84,7 +86,7 @@ where
             id.resize(rows.len() + WIDTH, 0);
             triangles.clear();
             let bin = bands.triangles(band).inspect(|t| triangles.push(*t));
-            scan_band(bin, width, top, band_rows, depth, id);
+            scan_band(bin, cut.as_ref(), width, top, band_rows, depth, id);
             mark_seen(
                 &buffers.id[..rows.len()],
                 triangles.len(),
@@ -403,10 +405,12 @@ pub fn coverage_counts(world: &World, view: &View) -> Vec<u32> {
 /// `width`-pixel image, and [`WIDTH`] entries past the band's end. Small triangles are tested
 /// eight pixels at a time and their depth tested in the same lanes; large ones have each row's
 /// span solved, then depth-tested along it. Both compute pixel k of a row's run of covered
-/// centres as 1/w(run start) + k·(1/w per pixel).
+/// centres as 1/w(run start) + k·(1/w per pixel). Triangles of objects that `cut` masks are
+/// tested pixel by pixel, a centre cut out by alpha writing nothing.
 #[inline]
 fn scan_band<'a>(
     bin: impl Iterator<Item = &'a ScreenTriangle>,
+    cut: Option<&CutTest>,
     width: u32,
     top: u32,
     rows: u32,
@@ -424,6 +428,10 @@ fn scan_band<'a>(
         let id = i as u32 + 1;
         let y0 = t.min_y.max(top as i32);
         let y1 = t.max_y.min(bottom);
+        if let Some(cut) = cut.filter(|cut| cut.masks(t.object)) {
+            cut.depth_test(t, (y0, y1), row_start, depth, ids, id);
+            continue;
+        }
         #[cfg(target_arch = "x86_64")]
         if let Some(avx2) = avx2
             && fits_lanes(t)

@@ -3,6 +3,7 @@
 //! tracer itself.
 
 mod accel;
+mod alpha_cut;
 mod bvh;
 mod bvh_buffer;
 mod bvh_build;

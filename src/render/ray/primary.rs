@@ -5,11 +5,14 @@
 use rayon::prelude::*;
 
 use super::accel::SceneAccel;
+use super::alpha_cut::CutScene;
 use super::packet::{PacketHits, RayPacket};
 use crate::render::camera::{NEAR, View};
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::simd::{F32x8, V3, WIDTH};
 use crate::render::surface_hit::SurfaceHit;
+use crate::render::texturing::ObjectTextures;
+use crate::world::World;
 
 /// The primary rays of `view` through continuous pixel coordinates (`x`, `y`) of each lane:
 /// from the eye (or the image plane, orthographic), unit directions, starting where the rasterizer's near plane cuts each ray, so
@@ -27,11 +30,12 @@ pub fn primary_packet(view: &View, x: F32x8, y: F32x8) -> RayPacket {
 /// agree on every pixel.
 pub fn primary_coverage(
     accel: &SceneAccel,
+    world: &World,
     view: &View,
     progress: &Progress,
     covered: &mut [f32],
 ) -> Result<(), Cancelled> {
-    trace_rows(accel, view, progress, covered, |found, out| {
+    trace_rows(accel, world, view, progress, covered, |found, out| {
         let hits = found.hit().move_mask();
         for (k, c) in out.iter_mut().enumerate() {
             *c = (hits >> k & 1) as f32;
@@ -43,11 +47,12 @@ pub fn primary_coverage(
 /// (`view.width`×`view.height` values): the hit the tracer shades there, lane by lane the same.
 pub fn primary_hits(
     accel: &SceneAccel,
+    world: &World,
     view: &View,
     progress: &Progress,
     hits: &mut [SurfaceHit],
 ) -> Result<(), Cancelled> {
-    trace_rows(accel, view, progress, hits, |found, out| {
+    trace_rows(accel, world, view, progress, hits, |found, out| {
         let mask = found.hit().move_mask();
         let (u, v) = (found.u.to_array(), found.v.to_array());
         let (object, triangle) = (found.object.to_array(), found.triangle.to_array());
@@ -69,9 +74,10 @@ pub fn primary_hits(
 /// Traces the primary rays of `view`'s pixel centres, rows in parallel and eight pixels a
 /// packet, and has `write` turn each packet's hits into its (up to eight) values of `out`
 /// (`view.width`×`view.height` values). Lanes past the right edge repeat the last pixel and
-/// are not written.
+/// are not written. Masked objects are cut out as the tracer cuts them.
 fn trace_rows<T: Send>(
     accel: &SceneAccel,
+    world: &World,
     view: &View,
     progress: &Progress,
     out: &mut [T],
@@ -79,6 +85,12 @@ fn trace_rows<T: Send>(
 ) -> Result<(), Cancelled> {
     let width = view.width as usize;
     debug_assert_eq!(out.len(), width * view.height as usize);
+    let textures = ObjectTextures::new(world, view);
+    let scene = CutScene {
+        accel,
+        world,
+        textures: &textures,
+    };
     out.par_chunks_mut(width)
         .enumerate()
         .try_for_each(|(y, row)| {
@@ -86,10 +98,8 @@ fn trace_rows<T: Send>(
             let y = F32x8::splat(y as f32 + 0.5);
             for (left, out) in (0..width).step_by(WIDTH).zip(row.chunks_mut(WIDTH)) {
                 let x = std::array::from_fn(|k| (left + k).min(width - 1) as f32 + 0.5);
-                write(
-                    &accel.intersect_packet(&primary_packet(view, F32x8::from(x), y)),
-                    out,
-                );
+                let packet = primary_packet(view, F32x8::from(x), y);
+                write(&scene.intersect_packet(&packet, &[0.0; WIDTH]), out);
             }
             progress.advance(1);
             Ok(())

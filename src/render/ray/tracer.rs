@@ -19,6 +19,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::accel::{Hit, SceneAccel};
+use super::alpha_cut::{CutScene, lane_mask};
 use super::half_line::Ray;
 use super::intersect::Triangle;
 use super::packet::RayPacket;
@@ -302,7 +303,7 @@ impl<'a> Tracer<'a> {
         stats: &mut RayCounts,
     ) -> [Vec3; WIDTH] {
         let dir = packet.dir;
-        let hits = self.accel.intersect_packet(packet);
+        let hits = self.cut().intersect_packet(packet, path);
         let hit_lanes = hits.hit().move_mask() as u32 & lanes;
         let Some(first) = (0..WIDTH).find(|&k| hit_lanes & 1 << k != 0) else {
             return [self.world.background; WIDTH];
@@ -374,7 +375,10 @@ impl<'a> Tracer<'a> {
                     return wanted;
                 }
                 stats.shadow += wanted.move_mask().count_ones() as u64;
-                wanted & !self.accel.occluded_packet(origins, light.position, wanted)
+                wanted
+                    & !self
+                        .cut()
+                        .occluded_packet(origins, light.position, wanted, &reached)
             })
             .to_vec3s();
         let mirrored = self.reflections(
@@ -462,7 +466,7 @@ impl<'a> Tracer<'a> {
         path: f32,
         stats: &mut RayCounts,
     ) -> Vec3 {
-        let Some(hit) = self.accel.intersect(ray, t_min, f32::INFINITY) else {
+        let Some(hit) = self.cut().intersect(ray, t_min, path) else {
             return self.world.background;
         };
         let d = Vec3::from(ray.dir);
@@ -478,19 +482,29 @@ impl<'a> Tracer<'a> {
             material.color = material.color.mul_elements(texel.into());
         }
         let lit = self.lighting.shade(s.p, s.n, -d, &material, |_, light| {
-            self.light_reaches(s.origin, light, stats)
+            self.light_reaches(s.origin, light, path, stats)
         });
         lit + self.reflection(hit.object, &s, d, depth, path, stats)
     }
 
-    /// Whether `light` reaches a point whose secondary rays start at `origin`: always without
-    /// shadows, else when its shadow ray is unblocked.
-    fn light_reaches(&self, origin: Vec3, light: &Light, stats: &mut RayCounts) -> bool {
+    /// Whether `light` reaches a point whose secondary rays start at `origin`, at path length
+    /// `path`: always without shadows, else when its shadow ray is unblocked.
+    fn light_reaches(&self, origin: Vec3, light: &Light, path: f32, stats: &mut RayCounts) -> bool {
         if !self.shadows {
             return true;
         }
         stats.shadow += 1;
-        !self.accel.occluded(origin, light.position)
+        !self.cut().occluded(origin, light.position, path)
+    }
+
+    /// The scene's queries with masked objects cut out.
+    #[inline]
+    fn cut(&self) -> CutScene<'_> {
+        CutScene {
+            accel: self.accel,
+            world: self.world,
+            textures: &self.textures,
+        }
     }
 
     /// What the mirror of object `object` at surface `s`, hit along `d` by a ray of reflection
@@ -553,12 +567,4 @@ fn mirror_ray(s: &Surface, d: Vec3) -> Ray {
 #[inline]
 fn toward(n: Vec3, d: Vec3) -> Vec3 {
     if n.dot(d) > 0.0 { -n } else { n }
-}
-
-/// The lanes whose bit is set in `bits`, as a lane mask (all bits set or clear).
-#[inline]
-fn lane_mask(bits: u32) -> F32x8 {
-    bytemuck::cast::<[u32; WIDTH], F32x8>(std::array::from_fn(|k| {
-        if bits & 1 << k != 0 { u32::MAX } else { 0 }
-    }))
 }

@@ -265,6 +265,7 @@ fn rendered(app: &mut App, reply: RenderReply) {
             app.warnings = warnings;
         }
         RenderReply::Bounds { bounds, .. } => app.view.set_bounds(bounds),
+        RenderReply::ModelFiles { files, .. } => app.disk.watch_model_files(files),
     }
 }
 
