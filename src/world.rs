@@ -8,6 +8,7 @@ use std::time::SystemTime;
 
 use rayon::prelude::*;
 
+use crate::memory_budget::{Estimate, distinct_texture_bytes};
 use crate::mesh::texture::Appearance;
 use crate::mesh::{
     Mesh, MeshFile, MeshFileError, ModelPart, Sphere, UniquePositions, tessellate, tessellate_part,
@@ -17,10 +18,9 @@ use crate::scene::{
     Falloff, Light, Material, MaterialSource, Object, Scene, SceneError, SceneWarning, Shape,
 };
 
-/// Most triangles a world may hold. Memory follows the triangle count: at this cap a render
-/// peaks at about 2.3 GB (the ray tracer on a flat-shaded mesh, the worst case; the README
-/// states the budget and how it was measured).
-pub const MAX_TRIANGLES: u64 = 9_000_000;
+/// Most triangles a world may hold: what the memory bound leaves for them
+/// ([`crate::memory_budget`]).
+pub use crate::memory_budget::MAX_TRIANGLES;
 
 /// One tessellated object.
 #[derive(Debug, Clone)]
@@ -220,6 +220,46 @@ fn part_appearance(object: &Object, part: &ModelPart<'_>, mesh: Mesh) -> (Mesh, 
     }
 }
 
+/// Checks the world `scene` would build from its loaded `models` (one per object, `None` for
+/// primitives) and `triangles` against the memory bound, before any object is tessellated: its
+/// triangles, its objects (a model's parts each become one) and its textures. The error names
+/// the model with the most triangles; its file is empty when the scene has no model (the
+/// caller knows the scene's own file).
+fn check_budget(
+    scene: &Scene,
+    base_dir: &Path,
+    models: &[Option<Arc<MeshFile>>],
+    triangles: u64,
+) -> Result<(), SceneError> {
+    let objects = models
+        .iter()
+        .map(|model| model.as_ref().map_or(1, |m| m.parts().len() as u64))
+        .sum();
+    let estimate = Estimate {
+        triangles,
+        objects,
+        texture_bytes: distinct_texture_bytes(
+            models
+                .iter()
+                .flatten()
+                .flat_map(|model| model.parts())
+                .filter_map(|part| part.appearance.base_color.map(|binding| binding.texture)),
+        ),
+        frame_bytes: 0,
+    };
+    let largest = scene
+        .objects
+        .iter()
+        .zip(models)
+        .filter_map(|(object, model)| match (&object.shape, model) {
+            (Shape::Mesh { path, .. }, Some(model)) => Some((model.triangle_count(), path)),
+            _ => None,
+        })
+        .max_by_key(|&(count, _)| count)
+        .map_or_else(PathBuf::new, |(_, path)| base_dir.join(path));
+    estimate.check(&largest).map_err(SceneError::OverBudget)
+}
+
 impl World {
     /// Tessellates `scene`; model paths are relative to `base_dir` (the scene file's directory).
     pub fn build(scene: &Scene, base_dir: &Path) -> Result<World, SceneError> {
@@ -289,6 +329,7 @@ impl World {
                 limit: MAX_TRIANGLES,
             });
         }
+        check_budget(scene, base_dir, &models, triangles)?;
         let built: Vec<Vec<(WorldObject, WorldObjectSource)>> = scene
             .objects
             .par_iter()

@@ -15,6 +15,7 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rastray::World;
 use rastray::export::{Destination, Exported, Output, Turntable, render_to, save_image_to};
+use rastray::memory_budget::{BYTES_PER_ANIMATION_PIXEL, BYTES_PER_STILL_PIXEL, Estimate};
 use rastray::render::{Frame, Progress, RenderOptions, Renderer, Size};
 use rastray::scene::{Scene, UpAxis};
 use rastray::text_escape::Escaped;
@@ -164,6 +165,8 @@ fn inputs_of(plan: &Plan) -> Vec<usize> {
 
 /// A loaded input: its scene, its world, and every file it was read from.
 pub(super) struct Loaded {
+    /// The input as named, for messages ("the default scene" for none).
+    pub input: PathBuf,
     pub scene: Scene,
     pub world: Arc<World>,
     pub files: Vec<PathBuf>,
@@ -274,12 +277,13 @@ fn load_file(
     let is_model = path.is_some_and(rastray::model_scene::is_model_file);
     let up = settings.up.or(settings.default_up.filter(|_| is_model));
     let (scene, base) = super::load_scene(path, up)?;
-    let report = super::build_world(&scene, &base)?;
+    let report = super::build_world(&scene, &base, path)?;
     let files: Vec<PathBuf> = listed.iter().cloned().chain(report.inputs).collect();
     let world = Arc::new(report.world);
     super::print_warnings(&scene, &world);
     settings.display.print_notes(&world);
     Ok(Loaded {
+        input: path.map_or_else(|| PathBuf::from("the default scene"), Path::to_path_buf),
         scene,
         world,
         files,
@@ -307,6 +311,7 @@ fn write_job(
             )
         })?;
     }
+    check_memory(loaded, job.output, &settings.options)?;
     let aspect = settings.size.width as f32 / settings.size.height as f32;
     let placed = settings
         .camera
@@ -335,6 +340,21 @@ fn write_job(
             )?
         }
     })
+}
+
+/// Refuses, before rendering, an output whose frame beside the world `loaded` passes the memory
+/// bound: a still image's frame and its encoding, or one frame in flight of a turntable (which
+/// renders more at once only where the bound leaves room).
+fn check_memory(loaded: &Loaded, output: Output, options: &RenderOptions) -> anyhow::Result<()> {
+    let pixels = u64::from(options.width) * u64::from(options.height);
+    let per_pixel = match output {
+        Output::Image(_) => BYTES_PER_STILL_PIXEL,
+        Output::Turntable(..) => BYTES_PER_ANIMATION_PIXEL,
+    };
+    Estimate::of_world(&loaded.world)
+        .with_frames(1, pixels, per_pixel)
+        .check(&loaded.input)?;
+    Ok(())
 }
 
 /// Prints what a job wrote: on stdout, or stderr when the image itself went to stdout.

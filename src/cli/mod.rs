@@ -298,19 +298,32 @@ pub fn print_warnings(scene: &Scene, world: &rastray::World) {
     }
 }
 
-/// Builds the world of `scene` (model paths relative to `base`), printing on stderr what its
-/// model files held that rastray skipped, one `warning:` line each.
-pub fn build_world(scene: &Scene, base: &Path) -> anyhow::Result<WorldReport> {
-    build_world_cached(scene, base, &mut MeshFileCache::default())
+/// Builds the world of `scene` (model paths relative to `base`), read from `input` (`None`
+/// for the default scene), printing on stderr what its model files held that rastray skipped,
+/// one `warning:` line each.
+pub fn build_world(
+    scene: &Scene,
+    base: &Path,
+    input: Option<&Path>,
+) -> anyhow::Result<WorldReport> {
+    build_world_cached(scene, base, input, &mut MeshFileCache::default())
 }
 
 /// As [`build_world`], keeping the model files read in `cache`.
 pub fn build_world_cached(
     scene: &Scene,
     base: &Path,
+    input: Option<&Path>,
     cache: &mut MeshFileCache,
 ) -> anyhow::Result<WorldReport> {
-    let report = World::build_report(scene, base, cache)?;
+    let report = World::build_report(scene, base, cache).map_err(|error| match error {
+        // A world over the memory bound that no model file is the cause of: name the input.
+        SceneError::OverBudget(mut over) if over.file.as_os_str().is_empty() => {
+            over.file = input.map_or_else(|| "the default scene".into(), Path::to_path_buf);
+            SceneError::OverBudget(over)
+        }
+        error => error,
+    })?;
     for warning in &report.warnings {
         eprintln!("warning: {}", Escaped(&warning.to_string()));
     }

@@ -126,7 +126,7 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
         };
         return motion::play(&args.motion, &picture, || {
             let (scene, base) = super::load_scene(args.scene.as_deref(), up)?;
-            let report = super::build_world(&scene, &base)?;
+            let report = super::build_world(&scene, &base, args.scene.as_deref())?;
             let world = Arc::new(report.world);
             let camera = args.camera.camera_for(
                 args.camera.view.first().copied(),

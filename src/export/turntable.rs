@@ -4,7 +4,9 @@
 //! Frames render in parallel, a batch at a time, each by its own [`Renderer`] (which keeps the
 //! world prepared from one frame to the next), and are made ready for the encoder on the same
 //! threads; one writer thread writes them in order while the next batch renders. Memory stays
-//! bounded whatever the length: a batch of frames and a channel of as many ready frames.
+//! bounded whatever the length: a batch of frames, one fewer ready frames waiting, and the one
+//! being written. The batch holds as many frames as the memory bound leaves room for beside the
+//! world ([`frames_in_flight`]), one at least and one a render thread at most.
 
 use std::f32::consts::TAU;
 use std::io::BufWriter;
@@ -20,6 +22,7 @@ use super::animation::{Animation, ReadyFrame};
 use super::destination::{Destination, Sink};
 use super::error::ExportError;
 use super::format::{AnimationFormat, PngDepth};
+use crate::memory_budget::{Estimate, frames_in_flight};
 use crate::render::{Frame, Progress, RenderError, RenderOptions, Renderer};
 use crate::scene::Camera;
 use crate::world::World;
@@ -199,8 +202,8 @@ impl Orbit<'_> {
     }
 }
 
-/// Renders every frame of `orbit`, as many at once as the current pool has threads, and
-/// writes them in order to `out` on a thread of their own.
+/// Renders every frame of `orbit`, as many at once as the current pool has threads and the
+/// memory bound allows, and writes them in order to `out` on a thread of their own.
 fn render_frames(
     orbit: &Orbit,
     animation: &Animation,
@@ -209,13 +212,19 @@ fn render_frames(
     progress: &Progress,
 ) -> Result<(), ExportError> {
     let frames = orbit.turntable.frames;
-    let batch = rayon::current_num_threads().max(1);
+    let pixels = u64::from(animation.width) * u64::from(animation.height);
+    let batch = frames_in_flight(
+        &Estimate::of_world(orbit.world),
+        pixels,
+        rayon::current_num_threads(),
+    );
     let mut slots: Vec<(Renderer, Frame)> = (0..batch)
         .map(|_| (Renderer::new(orbit.options), Frame::default()))
         .collect();
     let encode_error = |message: String| ExportError::encode(path, animation.format, message);
     std::thread::scope(|s| {
-        let (send, receive) = sync_channel::<ReadyFrame>(batch);
+        // With one frame in flight the renderer hands each frame straight to the writer.
+        let (send, receive) = sync_channel::<ReadyFrame>(batch - 1);
         let writer = s.spawn(move || {
             let mut writer = animation.start(out).map_err(encode_error)?;
             for frame in receive {

@@ -37,6 +37,9 @@ pub enum SceneError {
     /// The scene would tessellate into more triangles than the renderers accept.
     #[error("the scene has {triangles} triangles; the limit is {limit}")]
     TooManyTriangles { triangles: u64, limit: u64 },
+    /// The world would take more memory than the bound allows.
+    #[error("{0}")]
+    OverBudget(crate::memory_budget::OverBudget),
     /// An OBJ model referenced by the scene could not be loaded.
     #[error("{}: cannot load the OBJ model of object[{index}]: {}", error.location(), error.problem)]
     Obj { index: usize, error: ObjError },

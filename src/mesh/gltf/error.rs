@@ -67,6 +67,10 @@ pub enum GltfError {
     /// More triangles than a world may hold, counting every node instance.
     #[error("the file instances more than {limit} triangles")]
     TooManyTriangles { limit: u64 },
+    /// The primitive instances would take more memory than the bound allows (counted before
+    /// any is read).
+    #[error("{}", .0.figures())]
+    OverBudget(crate::memory_budget::OverBudget),
     /// A node hierarchy that expands to more node instances than rastray accepts.
     #[error("the node hierarchy expands to more than {limit} node instances")]
     TooManyNodes { limit: usize },

@@ -16,6 +16,7 @@ use super::material::phong_from_pbr;
 use super::primitive::{PrimitiveRead, read_primitive};
 use super::warning::ImportWarning;
 use crate::input_file::{MAX_MODEL_BYTES, read_bounded};
+use crate::memory_budget::Estimate;
 use crate::mesh::ModelGeometry;
 use crate::mesh::texture::Appearance;
 use crate::model_folder::ModelFolder;
@@ -78,10 +79,14 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
     let mut buffer_files = Vec::new();
     let buffers = load_buffers(&document, blob, &folder, &mut buffer_files)?;
     let mut images = ImageCache::new(&folder, &buffers, &mut buffer_files);
+    let instances = node_instances(&document)?;
+    instanced_estimate(&instances)
+        .check(path)
+        .map_err(GltfError::OverBudget)?;
     let mut parts = Vec::new();
     let mut skipped = 0;
     let mut triangles = 0u64;
-    for (node, transform) in node_instances(&document)? {
+    for (node, transform) in instances {
         let Some(mesh) = node.mesh() else { continue };
         for primitive in mesh.primitives() {
             let label = match mesh.name() {
@@ -166,6 +171,33 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
         buffer_files,
         binary: bytes.starts_with(b"glTF"),
     })
+}
+
+/// The triangles and world objects every primitive instance of `instances` will make, counted
+/// from accessor counts before any is read: one object per primitive instance, a third of its
+/// indices (or of its positions, unindexed) in triangles, or nearly all of them for strips and
+/// fans.
+fn instanced_estimate(instances: &[(Node<'_>, Mat4)]) -> Estimate {
+    let mut estimate = Estimate::default();
+    for primitive in instances
+        .iter()
+        .filter_map(|(node, _)| node.mesh())
+        .flat_map(|mesh| mesh.primitives())
+    {
+        let corners = primitive
+            .indices()
+            .or_else(|| primitive.get(&::gltf::Semantic::Positions))
+            .map_or(0, |a| a.count() as u64);
+        estimate.triangles += match primitive.mode() {
+            ::gltf::mesh::Mode::Triangles => corners / 3,
+            ::gltf::mesh::Mode::TriangleStrip | ::gltf::mesh::Mode::TriangleFan => {
+                corners.saturating_sub(2)
+            }
+            _ => 0,
+        };
+        estimate.objects += 1;
+    }
+    estimate
 }
 
 /// The JSON document and the GLB binary chunk of `bytes`, with container errors told apart.
