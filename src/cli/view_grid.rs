@@ -175,7 +175,7 @@ fn thumbnail(
         .up
         .filter(|_| rastray::model_scene::is_model_file(input));
     let (scene, base) = super::load_scene(Some(input), up)?;
-    let world = std::sync::Arc::new(super::build_world(&scene, &base)?.world);
+    let world = std::sync::Arc::new(super::build_world(&scene, &base, Some(input))?.world);
     let options = renderer.options();
     let aspect = options.width as f32 / options.height as f32;
     let camera = request.camera.camera_for(
