@@ -71,12 +71,13 @@ fn ray_tracer(c: &mut Criterion) {
 const BOXES: usize = 313_713;
 
 /// The scene of `scripts/many-boxes.py`: [`BOXES`] unit boxes on a cubic grid of spacing 2 (68
-/// a side, the last layer partly filled), seen from inside an eighth of the way along its
-/// diagonal, one light.
+/// a side, the last layer partly filled), seen from inside down a corridor between them, one
+/// light.
 fn many_boxes() -> (Scene, World) {
     let side = 68;
     let far = 2 * (side - 1);
-    let eye = 2 * (side / 8) + 1;
+    let mid = 2 * (side / 2) + 1;
+    let eye = 2 * (side / 16) + 1;
     let mut toml =
         String::from("ambient = 0.1\nbackground = [0.04, 0.05, 0.08]\nmax_depth = 2\nobject = [\n");
     for n in 0..BOXES {
@@ -89,8 +90,10 @@ fn many_boxes() -> (Scene, World) {
         );
     }
     toml += &format!(
-        "]\n[camera]\nposition = [{eye}, {eye}, {eye}]\ntarget = [{far}, {far}, {far}]\nfov = 60.0\n\
+        "]\n[camera]\nposition = [{mid}, {mid}, {eye}]\ntarget = [{}, {}, {far}]\nfov = 60.0\n\
          [[light]]\nposition = [{}, {}, -10]\nintensity = 0.9\n",
+        mid + 13,
+        mid + 8,
         far + 10,
         far + 40
     );

@@ -6,8 +6,9 @@ under the 16 MiB scene cap (about 14 MB); the OBJ is about 150 MB.
 
 Usage: scripts/many-boxes.py OUT_DIR [N]
 Writes OUT_DIR/boxes.toml, OUT_DIR/one-mesh.toml and OUT_DIR/boxes.obj. The camera stands inside
-the grid an eighth of the way along its diagonal, looking along it, so about a twentieth of the
-boxes lie behind it (each one a warning that `info` and `render` summarise).
+the grid, in the gap between boxes four layers in from one side, looking into the grid along z
+and a little aside, so the first layers lie behind it (each box a warning that `info` and
+`render` summarise).
 """
 import math
 import os
@@ -26,8 +27,10 @@ def main():
                 if len(centres) < count:
                     centres.append((2 * i, 2 * j, 2 * k))
     far = 2 * (side - 1)
-    # An odd coordinate lies in the gap between two boxes.
-    eye = 2 * (side // 8) + 1
+    # Odd coordinates lie in the gaps between boxes: the eye looks down a corridor along z,
+    # from the middle of the grid's side, a few layers in.
+    mid = 2 * (side // 2) + 1
+    eye = 2 * (side // 16) + 1
     top = (
         "# %d unit boxes on a grid of spacing 2, written by scripts/many-boxes.py\n"
         "ambient = 0.1\nbackground = [0.04, 0.05, 0.08]\nmax_depth = 2\n" % count
@@ -35,7 +38,7 @@ def main():
     tables = (
         "\n[camera]\nposition = [%g, %g, %g]\ntarget = [%g, %g, %g]\nup = [0.0, 1.0, 0.0]\nfov = 60.0\n\n"
         "[[light]]\nposition = [%g, %g, %g]\nintensity = 0.9\ncolor = [1.0, 1.0, 1.0]\n\n"
-        % (eye, eye, eye, far, far, far, far + 10, far + 40, -10)
+        % (mid, mid, eye, mid + 13, mid + 8, far, far + 10, far + 40, -10)
     )
     with open(os.path.join(out, "boxes.toml"), "w") as f:
         # The objects as one array of inline tables (far fewer bytes than [[object]] tables),
