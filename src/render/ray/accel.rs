@@ -1,16 +1,25 @@
-//! The scene's acceleration structure: each object's bounding sphere as the first cull (the
-//! study's test), then the BVH over the object's triangles.
+//! The scene's acceleration structure, Embree's two levels: a tree over the objects' boxes
+//! (`top_level`) whose leaves are objects, each with its bounding sphere as the first cull (the
+//! study's test) and then the BVH over its triangles. A scene of at most [`FLAT_OBJECTS`]
+//! objects skips the tree and tests every object's sphere in world order, as it always did.
+//!
+//! Every query gives the answer of that flat loop: the nearest hit, and between hits of two
+//! objects at the same t, the object that comes first in the world (the loop kept the first,
+//! since a later object had to be strictly nearer). The tree visits objects nearer first
+//! instead, so an object that comes before the nearest so far is searched up to the next float
+//! after its t, and its hit at the same t replaces the later object's.
 
 use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use rayon::prelude::*;
-use wide::CmpGt;
+use wide::{CmpGt, CmpLt};
 
 use super::bvh::Bvh;
 use super::half_line::Ray;
 use super::intersect::segment_meets_sphere;
 use super::packet::{PacketHits, RayPacket};
+use super::top_level::{ObjectBox, TopLevel};
 use crate::mesh::Sphere;
 use crate::render::progress::{Cancelled, Progress};
 use crate::render::simd::{F32x8, V3};
@@ -18,6 +27,11 @@ use crate::world::World;
 
 /// Self-hit offset as a fraction of the scene's bounding radius.
 const EPSILON_SCALE: f32 = 1.0e-4;
+
+/// Most objects a scene may have and still be searched by the flat loop over all objects
+/// rather than the tree over them: for so few, a sphere test each costs no more than a walk
+/// through the tree, and their images stay bit for bit what they were.
+pub const FLAT_OBJECTS: usize = 8;
 
 /// One object ready for ray queries.
 #[derive(Debug, Clone)]
@@ -51,6 +65,8 @@ pub struct Hit {
 pub struct SceneAccel {
     /// One entry per world object, in world order.
     pub objects: Vec<ObjectAccel>,
+    /// The tree over the objects; `None` when the flat loop searches them.
+    top: Option<TopLevel>,
     /// Distance secondary rays start off the surface, world units: 1e-4 × the scene's
     /// bounding radius.
     pub epsilon: f32,
@@ -63,6 +79,16 @@ impl SceneAccel {
     /// [`Cancelled`] soon after `progress` is cancelled, so a scene edited again during a long
     /// build does not wait for it.
     pub fn build(world: &World, progress: &Progress) -> Result<SceneAccel, Cancelled> {
+        Self::build_with(world, progress, FLAT_OBJECTS)
+    }
+
+    /// [`SceneAccel::build`], with the tree over the objects built when there are more than
+    /// `flat_objects` (0: always; `usize::MAX`: never, the flat loop).
+    pub fn build_with(
+        world: &World,
+        progress: &Progress,
+        flat_objects: usize,
+    ) -> Result<SceneAccel, Cancelled> {
         let started = Instant::now();
         let bvhs = world
             .objects
@@ -73,7 +99,7 @@ impl SceneAccel {
             .bounds()
             .map_or(1.0, |(lo, hi)| 0.5 * (hi - lo).length());
         let epsilon = EPSILON_SCALE * radius.max(f32::MIN_POSITIVE);
-        let objects = world
+        let objects: Vec<ObjectAccel> = world
             .objects
             .iter()
             .zip(bvhs?)
@@ -85,15 +111,60 @@ impl SceneAccel {
                 bvh,
             })
             .collect();
+        let top = (objects.len() > flat_objects).then(|| {
+            // Each object's triangle box, grown by epsilon as its sphere is, so that the
+            // tree's box tests never cull a ray the object's own BVH would let in.
+            let boxes: Vec<ObjectBox> = objects
+                .iter()
+                .map(|o| {
+                    let grow = glam::Vec3A::splat(epsilon);
+                    o.bvh.root.map(|r| (r.lo() - grow, r.hi() + grow))
+                })
+                .collect();
+            TopLevel::build(&boxes)
+        });
         Ok(SceneAccel {
             objects,
+            top,
             epsilon,
             build_time: started.elapsed(),
         })
     }
 
-    /// The nearest hit with t in (t_min, t_max) over all objects.
+    /// The nearest hit with t in (t_min, t_max) over all objects; of hits at the same t, the
+    /// one of the object that comes first in the world.
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+        let Some(top) = &self.top else {
+            return self.intersect_flat(ray, t_min, t_max);
+        };
+        let mut best: Option<Hit> = None;
+        let mut t_max = t_max;
+        top.walk_ray(ray, t_min, &mut t_max, |i, t_max| {
+            let o = &self.objects[i as usize];
+            let limit = match best {
+                Some(b) if b.object > i => b.t.next_up(),
+                _ => *t_max,
+            };
+            if segment_meets_sphere(ray, o.bounds.center, o.bounds.radius, t_min, limit)
+                && let Some(h) = o.bvh.intersect(ray, t_min, limit)
+            {
+                *t_max = h.t;
+                best = Some(Hit {
+                    t: h.t,
+                    u: h.u,
+                    v: h.v,
+                    object: i,
+                    triangle: h.triangle,
+                    slot: h.slot,
+                });
+            }
+            false
+        });
+        best
+    }
+
+    /// [`SceneAccel::intersect`] by the flat loop: every object's sphere in world order.
+    fn intersect_flat(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
         let mut best = None;
         let mut t_max = t_max;
         for (i, o) in self.objects.iter().enumerate() {
@@ -115,8 +186,37 @@ impl SceneAccel {
         best
     }
 
-    /// The nearest hit of each ray of `packet` over all objects.
+    /// The nearest hit of each ray of `packet` over all objects; lane by lane the answer of
+    /// [`SceneAccel::intersect_packet_flat`], ties between objects included.
     pub fn intersect_packet(&self, packet: &RayPacket) -> PacketHits {
+        let Some(top) = &self.top else {
+            return self.intersect_packet_flat(packet);
+        };
+        let hits = std::cell::Cell::new(PacketHits::none());
+        top.walk_packet(
+            packet,
+            || hits.get().t,
+            |i| {
+                let o = &self.objects[i as usize];
+                let mut found = hits.get();
+                let limit = tie_limits(&found, i);
+                if packet
+                    .meets_sphere(o.bounds.center, o.bounds.radius, limit)
+                    .any()
+                {
+                    found.t = limit;
+                    o.bvh.intersect_packet(packet, i, &mut found);
+                    hits.set(take_where(found.t.cmp_lt(limit), &found, &hits.get()));
+                }
+                false
+            },
+        );
+        hits.get()
+    }
+
+    /// The nearest hit of each ray of `packet` by the flat loop: every object's sphere in world
+    /// order, each lane keeping the first object's hit of those at the same t.
+    fn intersect_packet_flat(&self, packet: &RayPacket) -> PacketHits {
         let mut hits = PacketHits::none();
         for (i, o) in self.objects.iter().enumerate() {
             let (center, radius) = (o.bounds.center, o.bounds.radius);
@@ -135,6 +235,14 @@ impl SceneAccel {
             return false;
         }
         let ray = Ray::new(from, d / dist);
+        if let Some(top) = &self.top {
+            let mut t_max = dist;
+            return top.walk_ray(&ray, 0.0, &mut t_max, |i, _| {
+                let o = &self.objects[i as usize];
+                segment_meets_sphere(&ray, o.bounds.center, o.bounds.radius, 0.0, dist)
+                    && o.bvh.occluded(&ray, 0.0, dist)
+            });
+        }
         self.objects.iter().any(|o| {
             segment_meets_sphere(&ray, o.bounds.center, o.bounds.radius, 0.0, dist)
                 && o.bvh.occluded(&ray, 0.0, dist)
@@ -154,6 +262,28 @@ impl SceneAccel {
         let dir = V3::new(d.x / dist, d.y / dist, d.z / dist);
         let packet = RayPacket::new(from, dir, F32x8::ZERO);
         let mut blocked = F32x8::ZERO;
+        if let Some(top) = &self.top {
+            let state = std::cell::Cell::new((pending, blocked));
+            let finished = F32x8::splat(f32::NEG_INFINITY);
+            top.walk_packet(
+                &packet,
+                || state.get().0.blend(dist, finished),
+                |i| {
+                    let o = &self.objects[i as usize];
+                    let (mut pending, mut blocked) = state.get();
+                    let lanes =
+                        pending & packet.meets_sphere(o.bounds.center, o.bounds.radius, dist);
+                    if lanes.any() {
+                        let hit = o.bvh.occluded_packet(&packet, dist, lanes);
+                        blocked |= hit;
+                        pending &= !hit;
+                        state.set((pending, blocked));
+                    }
+                    !pending.any()
+                },
+            );
+            return state.get().1;
+        }
         for o in &self.objects {
             let lanes = pending & packet.meets_sphere(o.bounds.center, o.bounds.radius, dist);
             if !lanes.any() {
@@ -167,5 +297,38 @@ impl SceneAccel {
             }
         }
         blocked
+    }
+}
+
+/// Per lane, how far `object` must be searched to match the flat loop: up to the nearest hit so
+/// far, or, where that hit is of a later object, up to the next float after it, so that a hit
+/// of `object` at the same t is found (and then wins, as it did when objects came in order).
+#[inline]
+fn tie_limits(hits: &PacketHits, object: u32) -> F32x8 {
+    let t = hits.t.to_array();
+    let owner = hits.object.to_array();
+    F32x8::from(std::array::from_fn::<f32, 8, _>(|k| {
+        if owner[k] > object && t[k] < f32::INFINITY {
+            t[k].next_up()
+        } else {
+            t[k]
+        }
+    }))
+}
+
+/// `new` in the lanes of `mask` (all bits set), `old` elsewhere.
+#[inline]
+fn take_where(mask: F32x8, new: &PacketHits, old: &PacketHits) -> PacketHits {
+    let pick = |a: wide::u32x8, b: wide::u32x8| -> wide::u32x8 {
+        let (a, b): (F32x8, F32x8) = (bytemuck::cast(a), bytemuck::cast(b));
+        bytemuck::cast(mask.blend(a, b))
+    };
+    PacketHits {
+        t: mask.blend(new.t, old.t),
+        u: mask.blend(new.u, old.u),
+        v: mask.blend(new.v, old.v),
+        object: pick(new.object, old.object),
+        triangle: pick(new.triangle, old.triangle),
+        slot: pick(new.slot, old.slot),
     }
 }

@@ -18,6 +18,7 @@ mod packet;
 #[cfg(target_arch = "x86_64")]
 mod packet_avx2;
 mod primary;
+mod top_level;
 mod tracer;
 mod triangle_lanes;
 

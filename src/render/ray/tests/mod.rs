@@ -6,5 +6,6 @@ mod bvh_bins;
 mod bvh_partition;
 mod intersect;
 mod lane_leaves;
+mod top_level;
 mod tracer;
 mod watertight;
