@@ -379,3 +379,42 @@ fn view_grid_draws_rows_of_titled_thumbnails_and_skips_a_broken_file() {
     let o = rastray(&["view", "cube.obj", "box.glb"], at);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o.stderr));
 }
+
+#[test]
+fn turntables_in_one_batch_are_the_files_each_run_alone_writes() {
+    // The batch keeps its turntable renderers, frames and threads from one file to the next;
+    // nothing of one turntable may reach the next.
+    let dir = tempfile::tempdir().unwrap();
+    let at = dir.path();
+    let [a, b, c] = three_models(at);
+    let mut args = vec![
+        "render",
+        "--turntable",
+        "4",
+        "-s",
+        "48x32",
+        "--threads",
+        "2",
+    ];
+    args.extend(["-o", "batch/{stem}.gif", a, b, c]);
+    ok(&args, at);
+    for model in [a, b, c] {
+        let stem = Path::new(model).file_stem().unwrap().to_str().unwrap();
+        let alone = format!("alone-{stem}.gif");
+        let args = [
+            "render",
+            "--turntable",
+            "4",
+            "-s",
+            "48x32",
+            "--threads",
+            "2",
+            "-o",
+            &alone,
+            model,
+        ];
+        ok(&args, at);
+        let batch = std::fs::read(at.join(format!("batch/{stem}.gif"))).unwrap();
+        assert_eq!(batch, std::fs::read(at.join(&alone)).unwrap(), "{model}");
+    }
+}

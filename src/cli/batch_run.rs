@@ -14,7 +14,10 @@ use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rastray::World;
-use rastray::export::{Destination, Exported, Output, Turntable, render_to, save_image_to};
+use rastray::export::{
+    Destination, Exported, Output, Turntable, TurntableJob, TurntableWorkers,
+    render_turntable_with, save_image_to,
+};
 use rastray::memory_budget::{BYTES_PER_ANIMATION_PIXEL, BYTES_PER_STILL_PIXEL, Estimate};
 use rastray::render::{Frame, Progress, RenderOptions, Renderer, Size};
 use rastray::scene::{Scene, UpAxis};
@@ -181,10 +184,13 @@ fn work(
     bar: &ProgressBar,
 ) -> Outcome {
     let mut outcome = Outcome::default();
-    // One renderer and one frame for every still: the thread pool, the scratch memory and the
-    // frame's buffer are made once.
-    let mut renderer = Renderer::new(settings.options);
-    let mut frame = Frame::default();
+    // One renderer and one frame for every still, and one set of turntable workers for every
+    // turntable: thread pools, scratch memory and frame buffers are made once for the batch.
+    let mut workers = Workers {
+        renderer: Renderer::new(settings.options),
+        frame: Frame::default(),
+        turntables: TurntableWorkers::default(),
+    };
     let listed: Vec<PathBuf> = plan.inputs.iter().flatten().cloned().collect();
     for input in inputs_of(plan) {
         let name = plan.input_name(input);
@@ -220,7 +226,7 @@ fn work(
         };
         for job in jobs {
             let shown = Escaped(&job.destination.path().display().to_string()).to_string();
-            let written = write_job(job, &loaded, settings, &mut renderer, &mut frame, progress);
+            let written = write_job(job, &loaded, settings, &mut workers, progress);
             status.done.fetch_add(1, Ordering::Relaxed);
             match written {
                 Ok(exported) => {
@@ -291,12 +297,21 @@ fn load_file(
 }
 
 /// Writes one output of a loaded input.
+/// What renders the batch's jobs, kept from one job to the next.
+struct Workers {
+    /// Renders the stills.
+    renderer: Renderer,
+    /// Holds each still.
+    frame: Frame,
+    /// Render the turntables.
+    turntables: TurntableWorkers,
+}
+
 fn write_job(
     job: &Job,
     loaded: &Loaded,
     settings: &Settings,
-    renderer: &mut Renderer,
-    frame: &mut Frame,
+    workers: &mut Workers,
     progress: &Progress,
 ) -> anyhow::Result<Exported> {
     let destination = &job.destination;
@@ -322,7 +337,10 @@ fn write_job(
     };
     Ok(match job.output {
         Output::Image(format) => {
-            let stats = renderer.render(&loaded.world, &camera, progress, frame)?;
+            let frame = &mut workers.frame;
+            let stats = workers
+                .renderer
+                .render(&loaded.world, &camera, progress, frame)?;
             save_image_to(frame, format, destination, progress)?;
             Exported::Image(stats)
         }
@@ -330,14 +348,19 @@ fn write_job(
             if let Destination::File(path) = destination {
                 super::render::warn_unless_room(turntable, format, &settings.options, path);
             }
-            render_to(
-                &loaded.world,
-                &camera,
-                &settings.options,
-                job.output,
+            let job = TurntableJob {
+                world: &loaded.world,
+                camera: &camera,
+                options: &settings.options,
+                turntable,
+                format,
+            };
+            Exported::Turntable(render_turntable_with(
+                &mut workers.turntables,
+                &job,
                 destination,
                 progress,
-            )?
+            )?)
         }
     })
 }

@@ -38,5 +38,6 @@ pub use png::{PngSamples, encode_png, straight};
 pub use still::{encode_image, render_image, save_image, save_image_to};
 pub use template::{Field, FieldValues, OutputTemplate, TemplateError};
 pub use turntable::{
-    DEFAULT_FPS, MAX_FPS, MAX_FRAMES, Turntable, TurntableError, TurntableStats, render_turntable,
+    DEFAULT_FPS, MAX_FPS, MAX_FRAMES, Turntable, TurntableError, TurntableJob, TurntableStats,
+    TurntableWorkers, render_turntable, render_turntable_with,
 };

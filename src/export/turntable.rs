@@ -118,6 +118,16 @@ impl Turntable {
     }
 }
 
+/// The renderers, frames and thread pool that turntables render with, kept from one turntable
+/// to the next: a batch of many turntables starts its threads and allocates its frames once.
+#[derive(Default)]
+pub struct TurntableWorkers {
+    /// The pool asked for by `--threads`, with its thread count.
+    pool: Option<(usize, rayon::ThreadPool)>,
+    /// One renderer and frame for each frame in flight.
+    slots: Vec<(Renderer, Frame)>,
+}
+
 /// Renders the turntable of `world` around `camera` with `options` and writes it to
 /// `destination` in `format` (a file atomically). `progress` counts frames written; cancelling
 /// it stops the turntable after the frames rendering at the time, and leaves a file untouched.
@@ -130,6 +140,41 @@ pub fn render_turntable(
     destination: &Destination,
     progress: &Progress,
 ) -> Result<TurntableStats, ExportError> {
+    let mut workers = TurntableWorkers::default();
+    let job = TurntableJob {
+        world,
+        camera,
+        options,
+        turntable,
+        format,
+    };
+    render_turntable_with(&mut workers, &job, destination, progress)
+}
+
+/// What one turntable shows and how.
+pub struct TurntableJob<'a> {
+    pub world: &'a Arc<World>,
+    pub camera: &'a Camera,
+    pub options: &'a RenderOptions,
+    pub turntable: Turntable,
+    pub format: AnimationFormat,
+}
+
+/// As [`render_turntable`], with the renderers, frames and thread pool of `workers`, which keep
+/// them for the next turntable.
+pub fn render_turntable_with(
+    workers: &mut TurntableWorkers,
+    job: &TurntableJob,
+    destination: &Destination,
+    progress: &Progress,
+) -> Result<TurntableStats, ExportError> {
+    let TurntableJob {
+        world,
+        camera,
+        options,
+        turntable,
+        format,
+    } = *job;
     let path = destination.path();
     turntable.check()?;
     options.check().map_err(RenderError::from)?;
@@ -154,18 +199,25 @@ pub fn render_turntable(
         },
         turntable,
     };
-    let render_all =
-        |out: &mut BufWriter<Sink>| render_frames(&orbit, &animation, out, path, progress);
-    match options.threads {
+    let TurntableWorkers { pool, slots } = workers;
+    let mut render_all =
+        |out: &mut BufWriter<Sink>| render_frames(&orbit, &animation, slots, out, path, progress);
+    match options.threads.map(|n| n.get()) {
         None => render_all(&mut out)?,
-        Some(threads) => rayon::ThreadPoolBuilder::new()
-            .num_threads(threads.get())
-            .build()
-            .map_err(|e| RenderError::Threads {
-                threads: threads.get(),
-                message: e.to_string(),
-            })?
-            .install(|| render_all(&mut out))?,
+        Some(threads) => {
+            if pool.as_ref().is_none_or(|(n, _)| *n != threads) {
+                let started = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .map_err(|e| RenderError::Threads {
+                        threads,
+                        message: e.to_string(),
+                    })?;
+                *pool = Some((threads, started));
+            }
+            let (_, pool) = pool.as_ref().expect("started above");
+            pool.install(|| render_all(&mut out))?
+        }
     }
     let file = out
         .into_inner()
@@ -207,6 +259,7 @@ impl Orbit<'_> {
 fn render_frames(
     orbit: &Orbit,
     animation: &Animation,
+    slots: &mut Vec<(Renderer, Frame)>,
     out: &mut BufWriter<Sink>,
     path: &Path,
     progress: &Progress,
@@ -218,9 +271,15 @@ fn render_frames(
         pixels,
         rayon::current_num_threads(),
     );
-    let mut slots: Vec<(Renderer, Frame)> = (0..batch)
-        .map(|_| (Renderer::new(orbit.options), Frame::default()))
-        .collect();
+    // The slots of the last turntable, as many as this one has in flight, each renderer made
+    // again only when the options changed.
+    slots.truncate(batch);
+    for (renderer, _) in slots.iter_mut() {
+        if *renderer.options() != orbit.options {
+            *renderer = Renderer::new(orbit.options);
+        }
+    }
+    slots.resize_with(batch, || (Renderer::new(orbit.options), Frame::default()));
     let encode_error = |message: String| ExportError::encode(path, animation.format, message);
     std::thread::scope(|s| {
         // With one frame in flight the renderer hands each frame straight to the writer.
