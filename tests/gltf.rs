@@ -353,3 +353,30 @@ fn gouraud_and_phong_agree_on_the_flat_box_and_share_its_coverage() {
     }
     assert!(covered > 300, "the box covers {covered} pixels");
 }
+
+#[test]
+fn an_image_without_its_bytes_is_refused_naming_it() {
+    // Found by the fuzzer: the gltf crate's `Image::source` unwraps a missing `uri`, and a
+    // missing `mimeType` beside a `bufferView`. Such a file is refused, not a panic.
+    let dir = tempfile::tempdir().unwrap();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(data("box.gltf")).unwrap()).unwrap();
+    for (image, problem) in [
+        (serde_json::json!({}), "needs a uri or a bufferView"),
+        (serde_json::json!({ "bufferView": 0 }), "needs its mimeType"),
+    ] {
+        let mut file = json.clone();
+        file["images"] = serde_json::json!([image]);
+        file["textures"] = serde_json::json!([{ "source": 0 }]);
+        file["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] =
+            serde_json::json!({ "index": 0 });
+        let path = dir.path().join("box.gltf");
+        std::fs::write(&path, serde_json::to_vec(&file).unwrap()).unwrap();
+        std::fs::copy(data("box data.bin"), dir.path().join("box data.bin")).unwrap();
+        let error = load_gltf(&path).err().expect("refused").to_string();
+        assert!(
+            error.contains("images[0]") && error.contains(problem),
+            "{error}"
+        );
+    }
+}

@@ -269,6 +269,21 @@ fn checked_document(
             }
         }
     }
+    // The crate's `Image::source` unwraps a missing `uri`, and a missing `mimeType` beside a
+    // `bufferView`: an image names its bytes one of the two ways, or the file is refused.
+    for (i, image) in root.images.iter().enumerate() {
+        let problem = match (&image.buffer_view, &image.uri, &image.mime_type) {
+            (Some(_), _, None) => Some("an image in a buffer view needs its mimeType"),
+            (None, None, _) => Some("an image needs a uri or a bufferView"),
+            _ => None,
+        };
+        if let Some(problem) = problem {
+            return Err(GltfError::Invalid {
+                at: format!("images[{i}]"),
+                problem: problem.to_string(),
+            });
+        }
+    }
     let mut problems = Vec::new();
     root.validate(&root, json::Path::new, &mut |path, error| {
         problems.push((path(), error))
