@@ -387,21 +387,8 @@ fn turntables_in_one_batch_are_the_files_each_run_alone_writes() {
     let dir = tempfile::tempdir().unwrap();
     let at = dir.path();
     let [a, b, c] = three_models(at);
-    let mut args = vec![
-        "render",
-        "--turntable",
-        "4",
-        "-s",
-        "48x32",
-        "--threads",
-        "2",
-    ];
-    args.extend(["-o", "batch/{stem}.gif", a, b, c]);
-    ok(&args, at);
-    for model in [a, b, c] {
-        let stem = Path::new(model).file_stem().unwrap().to_str().unwrap();
-        let alone = format!("alone-{stem}.gif");
-        let args = [
+    let turntable = |output: &str, inputs: &[&str]| {
+        let mut args = vec![
             "render",
             "--turntable",
             "4",
@@ -409,11 +396,16 @@ fn turntables_in_one_batch_are_the_files_each_run_alone_writes() {
             "48x32",
             "--threads",
             "2",
-            "-o",
-            &alone,
-            model,
         ];
+        args.extend(["-o", output]);
+        args.extend(inputs);
         ok(&args, at);
+    };
+    turntable("batch/{stem}.gif", &[a, b, c]);
+    for model in [a, b, c] {
+        let stem = Path::new(model).file_stem().unwrap().to_str().unwrap();
+        let alone = format!("alone-{stem}.gif");
+        turntable(&alone, &[model]);
         let batch = std::fs::read(at.join(format!("batch/{stem}.gif"))).unwrap();
         assert_eq!(batch, std::fs::read(at.join(&alone)).unwrap(), "{model}");
     }
