@@ -12,6 +12,7 @@ use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 
 use crate::input_file::{kind_of, too_large};
+use crate::mesh::texture::TextureLedger;
 
 /// The folder a model file lives in, resolved (every symlink followed), within which all the
 /// model's references must stay.
@@ -19,6 +20,8 @@ use crate::input_file::{kind_of, too_large};
 pub struct ModelFolder {
     /// The canonical folder: absolute, no symlinks, no `.` or `..`.
     root: PathBuf,
+    /// The memory the model's textures will take, committed before each is decoded.
+    textures: TextureLedger,
 }
 
 /// How a reference is spelled in its file.
@@ -54,7 +57,16 @@ impl ModelFolder {
             .parent()
             .map(Path::to_path_buf)
             .unwrap_or_else(|| PathBuf::from("/"));
-        Ok(ModelFolder { root })
+        Ok(ModelFolder {
+            root,
+            textures: TextureLedger::new(model),
+        })
+    }
+
+    /// The account of the model's textures against the memory bound: every texture read for
+    /// this model is committed to it from its header before it is decoded.
+    pub fn textures(&self) -> &TextureLedger {
+        &self.textures
     }
 
     /// The folder, canonical.

@@ -227,3 +227,42 @@ fn a_world_or_a_frame_past_the_bound_is_refused_naming_the_file() {
     assert!(peak < 100_000_000, "peak {peak} bytes");
     assert!(!dir.path().join("big.png").exists());
 }
+
+#[test]
+fn textures_are_counted_from_their_headers_before_any_past_the_bound_is_decoded() {
+    let dir = tempfile::tempdir().unwrap();
+    // Eight materials, each with its own 2048×2048 texture (89 MB decoded with its mip chain),
+    // on eight quads: 712 MB of textures against a bound of 400 MB, of which the program's
+    // 120 MB leaves room for three.
+    let mut obj = String::from("mtllib many.mtl\nvt 0 0\nvt 1 0\nvt 1 1\n");
+    let mut mtl = String::new();
+    for m in 0..8 {
+        let image = image::RgbImage::from_pixel(2048, 2048, image::Rgb([m * 30, 100, 200]));
+        image.save(dir.path().join(format!("t{m}.png"))).unwrap();
+        mtl += &format!("newmtl m{m}\nKd 1 1 1\nmap_Kd t{m}.png\n");
+        let x = m as f32 * 2.0;
+        obj += &format!(
+            "v {x} 0 0\nv {} 0 0\nv {x} 1 0\nusemtl m{m}\nf -3/1 -2/2 -1/3\n",
+            x + 1.0
+        );
+    }
+    std::fs::write(dir.path().join("many.obj"), obj).unwrap();
+    std::fs::write(dir.path().join("many.mtl"), mtl).unwrap();
+    let (output, peak) = measured(&["info", "many.obj"], dir.path(), Some("400M"));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("many.obj: 8 triangles in 8 objects, 0.36 GB of textures")
+            && stderr.contains("bound is 0.40 GB"),
+        "{stderr}"
+    );
+    // Decoding all eight before counting them took the process past 0.7 GB.
+    assert!(peak < 400_000_000, "peak {peak} bytes");
+    // With room for all eight, the same model loads.
+    let (output, _) = measured(&["info", "many.obj"], dir.path(), Some("1G"));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+}

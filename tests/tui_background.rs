@@ -227,3 +227,31 @@ fn the_export_looks_through_the_view() {
     assert_ne!(exported, from(scene.camera), "not the scene's camera");
     assert!(!app.document().is_dirty());
 }
+
+#[test]
+fn a_preview_past_the_memory_bound_is_refused_before_it_renders() {
+    // 16384×16384 pixels of frame: 11.3 GB at 42 bytes a pixel, past the 4.8 GB bound.
+    let (tx, rx) = channel();
+    let mut worker = Worker::spawn(move |reply| {
+        let _ = tx.send(reply);
+    });
+    let id = worker.request(
+        wanted(Algorithm::Phong, 16384, 16384, 0),
+        Arc::new(default_scene()),
+        PathBuf::from("."),
+    );
+    loop {
+        match rx.recv_timeout(PATIENCE).expect("the worker answers") {
+            RenderReply::Bounds { .. } => continue,
+            RenderReply::Failed { id: got, message } => {
+                assert_eq!(got, id);
+                assert!(
+                    message.starts_with("the preview: ") && message.contains("the memory bound is"),
+                    "{message}"
+                );
+                break;
+            }
+            other => panic!("expected a refusal, got {other:?}"),
+        }
+    }
+}

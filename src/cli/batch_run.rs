@@ -18,7 +18,6 @@ use rastray::export::{
     Destination, Exported, Output, Turntable, TurntableJob, TurntableWorkers,
     render_turntable_with, save_image_to,
 };
-use rastray::memory_budget::{BYTES_PER_ANIMATION_PIXEL, BYTES_PER_STILL_PIXEL, Estimate};
 use rastray::render::{Frame, Progress, RenderOptions, Renderer, Size};
 use rastray::scene::{Scene, UpAxis};
 use rastray::text_escape::Escaped;
@@ -326,7 +325,8 @@ fn write_job(
             )
         })?;
     }
-    check_memory(loaded, job.output, &settings.options)?;
+    job.output
+        .check_memory(&loaded.world, &settings.options, &loaded.input)?;
     let aspect = settings.size.width as f32 / settings.size.height as f32;
     let placed = settings
         .camera
@@ -363,21 +363,6 @@ fn write_job(
             )?)
         }
     })
-}
-
-/// Refuses, before rendering, an output whose frame beside the world `loaded` passes the memory
-/// bound: a still image's frame and its encoding, or one frame in flight of a turntable (which
-/// renders more at once only where the bound leaves room).
-fn check_memory(loaded: &Loaded, output: Output, options: &RenderOptions) -> anyhow::Result<()> {
-    let pixels = u64::from(options.width) * u64::from(options.height);
-    let per_pixel = match output {
-        Output::Image(_) => BYTES_PER_STILL_PIXEL,
-        Output::Turntable(..) => BYTES_PER_ANIMATION_PIXEL,
-    };
-    Estimate::of_world(&loaded.world)
-        .with_frames(1, pixels, per_pixel)
-        .check(&loaded.input)?;
-    Ok(())
 }
 
 /// Prints what a job wrote: on stdout, or stderr when the image itself went to stdout.

@@ -9,6 +9,9 @@ use super::error::ExportError;
 use super::format::{AnimationFormat, FormatError, ImageFormat};
 use super::still::render_image;
 use super::turntable::{Turntable, TurntableStats, render_turntable};
+use crate::memory_budget::{
+    BYTES_PER_ANIMATION_PIXEL, BYTES_PER_STILL_PIXEL, Estimate, OverBudget,
+};
 use crate::render::{Progress, RenderOptions, RenderStats};
 use crate::scene::Camera;
 use crate::world::World;
@@ -28,6 +31,26 @@ pub enum Exported {
 }
 
 impl Output {
+    /// Refuses, before rendering, this output of `world` at `options`' size when its frame beside
+    /// the world passes the memory bound (figures naming `file`): a still image's frame and its
+    /// encoding, or one frame in flight of a turntable (which renders more at once only where
+    /// the bound leaves room).
+    pub fn check_memory(
+        self,
+        world: &World,
+        options: &RenderOptions,
+        file: &Path,
+    ) -> Result<(), OverBudget> {
+        let pixels = u64::from(options.width) * u64::from(options.height);
+        let per_pixel = match self {
+            Output::Image(_) => BYTES_PER_STILL_PIXEL,
+            Output::Turntable(..) => BYTES_PER_ANIMATION_PIXEL,
+        };
+        Estimate::of_world(world)
+            .with_frames(1, pixels, per_pixel)
+            .check(file)
+    }
+
     /// What to write to `path`: a turntable when `turntable` is given, else a still image; in
     /// the `requested` format, or the one the extension names.
     pub fn for_path(

@@ -39,6 +39,10 @@ pub enum ObjProblem {
     /// More triangles than a scene may hold, found before the file was read to its end.
     #[error("the file holds more than {limit} triangles, the most a scene may hold")]
     TooManyTriangles { limit: u64 },
+    /// The model's textures would take it past the memory bound: the figures, counted from the
+    /// textures' headers before they were decoded.
+    #[error("{0}")]
+    OverBudget(String),
     /// Nothing to draw: no face with three or more corners.
     #[error("the file holds no faces")]
     NoFaces,

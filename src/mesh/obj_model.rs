@@ -14,6 +14,7 @@ use super::mtl_phong::phong_from_mtl;
 use super::obj::{ObjRead, read_obj};
 use super::obj_error::{ObjError, ObjProblem};
 use super::texture::{Texture, load_texture};
+use crate::memory_budget::Estimate;
 use crate::model_folder::{ModelFolder, ReferenceKind};
 use crate::scene::Material;
 
@@ -76,6 +77,11 @@ pub fn load_obj_model(path: &Path) -> Result<ObjModel, ObjError> {
     } = read;
     let groups = triangles_by_material(&material_runs, geometry.triangles.len());
     let whole = groups.len() == 1;
+    folder.textures().count_model(Estimate {
+        triangles: geometry.triangles.len() as u64,
+        objects: groups.len() as u64,
+        ..Estimate::default()
+    });
     let mut parts = Vec::with_capacity(groups.len());
     let mut geometry = Some(geometry);
     let mut textures = HashMap::new();
@@ -94,6 +100,13 @@ pub fn load_obj_model(path: &Path) -> Result<ObjModel, ObjError> {
                 &mut material_files,
             )
         });
+        if let Some(over) = folder.textures().refusal() {
+            return Err(ObjError {
+                path: path.to_path_buf(),
+                line: None,
+                problem: ObjProblem::OverBudget(over.figures()),
+            });
+        }
         let part_geometry = match (&geometry, whole) {
             (Some(_), true) => geometry.take().unwrap_or_default(),
             (Some(all), false) => all.subset(&triangles),

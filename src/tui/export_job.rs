@@ -41,6 +41,9 @@ impl ExportJob {
         let handle = std::thread::spawn(move || {
             let started = Instant::now();
             let world = Arc::new(World::build(&scene, &base).map_err(|e| e.to_string())?);
+            output
+                .check_memory(&world, &options, &out)
+                .map_err(|e| e.to_string())?;
             render_to_file(&world, &scene.camera, &options, output, &out, &p)
                 .map_err(|e| e.to_string())?;
             Ok(started.elapsed().as_secs_f64() * 1000.0)

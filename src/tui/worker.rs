@@ -2,12 +2,13 @@
 //! render still running when a newer request arrives is cancelled through [`Progress::cancel`].
 //! The world is rebuilt only when the scene's generation changes (camera moves reuse it).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
 
 use super::preview::PreviewImage;
 use crate::World;
+use crate::memory_budget::{BYTES_PER_STILL_PIXEL, Estimate};
 use crate::mesh::{Measurements, measure};
 use crate::render::{
     Algorithm, DisplayMode, Frame, Overlays, Progress, RenderError, RenderOptions, Renderer,
@@ -188,6 +189,9 @@ impl Worker {
 fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
     let mut cache = MeshFileCache::default();
     let mut world: Option<(u64, Arc<World>, Arc<[WorldObjectSource]>)> = None;
+    // The current world's counts for the memory budget, beside which each preview's frames are
+    // checked before they render.
+    let mut budget = Estimate::default();
     // Keeps the ray tracer's BVH of the current world while only the camera moves.
     let mut renderer: Option<Renderer> = None;
     let mut frame = Frame::default();
@@ -231,6 +235,7 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
                             files: report.inputs,
                         });
                     }
+                    budget = Estimate::of_world(&w);
                     let (w, s) = (Arc::new(w), Arc::<[_]>::from(report.sources));
                     world = Some((generation, w.clone(), s.clone()));
                     (w, s)
@@ -294,6 +299,23 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
             });
         }
         let count = request.wanted.jobs.len();
+        let pixels = request
+            .wanted
+            .jobs
+            .iter()
+            .map(|job| u64::from(job.width) * u64::from(job.height))
+            .sum();
+        // The preview's frames (two when comparing) count toward the bound like an export's.
+        if let Err(over) = budget
+            .with_frames(1, pixels, BYTES_PER_STILL_PIXEL)
+            .check(Path::new("the preview"))
+        {
+            reply(RenderReply::Failed {
+                id: request.id,
+                message: over.to_string(),
+            });
+            continue;
+        }
         for (n, job) in request.wanted.jobs.iter().enumerate() {
             let options = RenderOptions {
                 mode: display.mode,

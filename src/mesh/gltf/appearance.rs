@@ -85,7 +85,7 @@ impl<'a> ImageCache<'a> {
                 (name, bytes)
             }
         };
-        decode_texture(&bytes, &name)
+        decode_texture(&bytes, &name, self.folder.textures())
             .map(Arc::new)
             .map_err(|e| e.to_string())
     }

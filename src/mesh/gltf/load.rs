@@ -80,9 +80,9 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
     let buffers = load_buffers(&document, blob, &folder, &mut buffer_files)?;
     let mut images = ImageCache::new(&folder, &buffers, &mut buffer_files);
     let instances = node_instances(&document)?;
-    instanced_estimate(&instances)
-        .check(path)
-        .map_err(GltfError::OverBudget)?;
+    let estimate = instanced_estimate(&instances);
+    estimate.check(path).map_err(GltfError::OverBudget)?;
+    folder.textures().count_model(estimate);
     let mut parts = Vec::new();
     let mut skipped = 0;
     let mut triangles = 0u64;
@@ -116,7 +116,13 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
                         Some(name) => format!("material {index} {name:?}"),
                         None => format!("material {index}"),
                     };
-                    part_appearance(&material, &name, &mut images, &mut warnings)
+                    let read = part_appearance(&material, &name, &mut images, &mut warnings);
+                    // A texture past the memory bound fails the load (with the figures), before
+                    // any further one is decoded.
+                    if let Some(over) = images.folder.textures().refusal() {
+                        return Err(GltfError::OverBudget(over));
+                    }
+                    read
                 }
                 None => PartAppearance {
                     appearance: Appearance::plain(),

@@ -13,6 +13,10 @@ pub enum PlyProblem {
     /// The file could not be read.
     #[error("{0}")]
     Io(std::io::Error),
+    /// The model's texture would take it past the memory bound: the figures, counted from the
+    /// texture's header before it was decoded.
+    #[error("{0}")]
+    OverBudget(String),
     /// The first line is not `ply`.
     #[error("not a PLY file: the first line must be `ply`")]
     NotPly,

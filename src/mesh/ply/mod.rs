@@ -33,6 +33,7 @@ use super::geometry::ModelGeometry;
 use super::gltf::ImportWarning;
 use super::model_error::{Place, grew};
 use super::texture::{Appearance, Sampler, TextureBinding, load_texture};
+use crate::memory_budget::{Estimate, OverBudget};
 use crate::model_folder::{ModelFolder, ReferenceKind};
 use crate::world::MAX_TRIANGLES;
 
@@ -116,7 +117,8 @@ pub fn load_ply(path: &Path) -> Result<PlyModel, PlyError> {
         .finish()
         .map_err(|problem| fail((Place::File, problem)))?;
     let (appearance, warnings) = match &header.texture {
-        Some(name) => texture_appearance(path, name),
+        Some(name) => texture_appearance(path, name, geometry.triangles.len() as u64)
+            .map_err(|over| fail((Place::File, PlyProblem::OverBudget(over.figures()))))?,
         None => (Appearance::plain(), Vec::new()),
     };
     let texture_files = header
@@ -137,15 +139,30 @@ pub fn load_ply(path: &Path) -> Result<PlyModel, PlyError> {
     })
 }
 
-/// The appearance of a model whose texture is the file `name` beside the model at `path`
-/// (sampled with repeat and trilinear filtering), or a plain one and the warning why not.
-fn texture_appearance(path: &Path, name: &str) -> (Appearance, Vec<ImportWarning>) {
-    let texture = ModelFolder::of(path)
+/// The appearance of a model of `triangles` whose texture is the file `name` beside the model at
+/// `path` (sampled with repeat and trilinear filtering), or a plain one and the warning why not;
+/// the figures when the texture would take the model past the memory bound.
+fn texture_appearance(
+    path: &Path,
+    name: &str,
+    triangles: u64,
+) -> Result<(Appearance, Vec<ImportWarning>), OverBudget> {
+    let folder = ModelFolder::of(path);
+    let texture = folder
+        .as_ref()
         .map_err(|e| format!("texture {name}: {e}"))
         .and_then(|folder| {
-            load_texture(&folder, name, ReferenceKind::Path).map_err(|e| e.to_string())
+            folder.textures().count_model(Estimate {
+                triangles,
+                objects: 1,
+                ..Estimate::default()
+            });
+            load_texture(folder, name, ReferenceKind::Path).map_err(|e| e.to_string())
         });
-    match texture {
+    if let Some(over) = folder.ok().and_then(|f| f.textures().refusal()) {
+        return Err(over);
+    }
+    Ok(match texture {
         Ok(texture) => (
             Appearance {
                 base_color: Some(TextureBinding {
@@ -160,7 +177,7 @@ fn texture_appearance(path: &Path, name: &str) -> (Appearance, Vec<ImportWarning
             Appearance::plain(),
             vec![ImportWarning::ModelTextureUnreadable { reason }],
         ),
-    }
+    })
 }
 
 /// The vertex element's index, plan and attributes, once every element's count is known to

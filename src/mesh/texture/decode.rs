@@ -1,19 +1,30 @@
-//! PNG or JPEG bytes to a [`Texture`]: the header's size checked first, then the image decoded,
-//! halved until it fits, turned from sRGB to linear and given its mip chain.
+//! PNG or JPEG bytes to a [`Texture`]: the header's size checked first and committed to the
+//! model's memory account, then the image decoded, turned from sRGB to linear (halved on the way
+//! when it is larger than the base level may be) and given its mip chain.
 
 use std::io::Cursor;
 
 use image::{ImageFormat, ImageReader, Limits};
 
 use super::error::TextureError;
+use super::ledger::TextureLedger;
 use super::limits::{MAX_TEXTURE_BASE_TEXELS, MAX_TEXTURE_DECLARED_TEXELS, MAX_TEXTURE_SIDE};
-use super::mip_chain::{halved, mip_chain};
+use super::mip_chain::{halved, halved_with, mip_chain};
 use super::texture::{MipLevel, Texture};
 use crate::mesh::srgb_byte_to_linear;
 
-/// Decodes `bytes`, a PNG or JPEG image, into a texture named `name`. The colour channels are
-/// sRGB-encoded and become linear; alpha is kept as it is.
-pub fn decode_texture(bytes: &[u8], name: &str) -> Result<Texture, TextureError> {
+/// Decodes `bytes`, a PNG or JPEG image, into a texture named `name`, once the size its header
+/// declares is committed to `ledger`, the model's account. The colour channels are sRGB-encoded
+/// and become linear; alpha is kept as it is.
+///
+/// Memory while decoding: the 8-bit image (4 bytes a declared texel, at most 268 MB) beside the
+/// linear base level (16 bytes a texel of at most [`MAX_TEXTURE_BASE_TEXELS`], 268 MB); the
+/// linear image at full size is never held when it is halved.
+pub fn decode_texture(
+    bytes: &[u8],
+    name: &str,
+    ledger: &TextureLedger,
+) -> Result<Texture, TextureError> {
     let not_image = |reason: String| TextureError::NotImage {
         name: name.to_string(),
         reason,
@@ -46,6 +57,12 @@ pub fn decode_texture(bytes: &[u8], name: &str) -> Result<Texture, TextureError>
             max_texels: MAX_TEXTURE_DECLARED_TEXELS,
         });
     }
+    ledger
+        .commit(width, height)
+        .map_err(|over| TextureError::OverBudget {
+            name: name.to_string(),
+            figures: over.figures(),
+        })?;
     let mut decoder = reader()?;
     let mut limits = Limits::default();
     limits.max_image_width = Some(MAX_TEXTURE_SIDE);
@@ -58,31 +75,44 @@ pub fn decode_texture(bytes: &[u8], name: &str) -> Result<Texture, TextureError>
         reason: e.to_string(),
     })?;
     let rgba = image.into_rgba8();
-    let mut base = MipLevel {
-        width: rgba.width(),
-        height: rgba.height(),
-        texels: rgba
-            .pixels()
-            .map(|p| {
-                let [r, g, b, a] = p.0;
-                [
-                    srgb_byte_to_linear(r),
-                    srgb_byte_to_linear(g),
-                    srgb_byte_to_linear(b),
-                    f32::from(a) / 255.0,
-                ]
-            })
-            .collect(),
-    };
+    let base = linear_base(&rgba, MAX_TEXTURE_BASE_TEXELS);
     drop(rgba);
-    while u64::from(base.width) * u64::from(base.height) > MAX_TEXTURE_BASE_TEXELS {
-        base = halved(&base);
-    }
     Ok(Texture {
         name: name.to_string(),
         file_size: (width, height),
         levels: mip_chain(base),
     })
+}
+
+/// `rgba`'s texels from sRGB to linear, as the base level: the image itself when it has at most
+/// `max_texels`, else halved until it does, where the first halving reads the 8-bit texels
+/// directly (the same sums as halving the linear image, without holding it).
+fn linear_base(rgba: &image::RgbaImage, max_texels: u64) -> MipLevel {
+    let linear = |x: u32, y: u32| {
+        let [r, g, b, a] = rgba.get_pixel(x, y).0;
+        [
+            srgb_byte_to_linear(r),
+            srgb_byte_to_linear(g),
+            srgb_byte_to_linear(b),
+            f32::from(a) / 255.0,
+        ]
+    };
+    let (width, height) = rgba.dimensions();
+    if u64::from(width) * u64::from(height) <= max_texels {
+        return MipLevel {
+            width,
+            height,
+            texels: rgba
+                .enumerate_pixels()
+                .map(|(x, y, _)| linear(x, y))
+                .collect(),
+        };
+    }
+    let mut base = halved_with(width, height, linear);
+    while u64::from(base.width) * u64::from(base.height) > max_texels {
+        base = halved(&base);
+    }
+    base
 }
 
 #[cfg(test)]
@@ -99,9 +129,16 @@ mod tests {
         bytes
     }
 
+    /// A fresh account for a model `m.gltf`.
+    fn ledger() -> TextureLedger {
+        TextureLedger::new(std::path::Path::new("m.gltf"))
+    }
+
     #[test]
     fn a_png_decodes_to_linear_with_its_chain() {
-        let texture = decode_texture(&png(4, 2, [255, 128, 0]), "t.png").unwrap();
+        let ledger = ledger();
+        let texture = decode_texture(&png(4, 2, [255, 128, 0]), "t.png", &ledger).unwrap();
+        assert_eq!(ledger.committed(), texture.memory_bytes() as u64);
         assert_eq!(texture.size(), (4, 2));
         assert_eq!(texture.levels.len(), 3);
         let texel = texture.levels[0].texel(3, 1);
@@ -114,11 +151,63 @@ mod tests {
 
     #[test]
     fn text_is_not_an_image() {
-        let error = decode_texture(b"hello, world", "notes.png").unwrap_err();
+        let error = decode_texture(b"hello, world", "notes.png", &ledger()).unwrap_err();
         assert!(matches!(error, TextureError::NotImage { .. }), "{error:?}");
         assert!(
             error.to_string().starts_with("texture notes.png:"),
             "{error}"
         );
+    }
+
+    #[test]
+    fn a_texture_past_the_model_s_budget_is_refused_before_decoding() {
+        let ledger = ledger();
+        ledger.count_model(crate::memory_budget::Estimate {
+            triangles: crate::memory_budget::MAX_TRIANGLES,
+            objects: 1,
+            ..Default::default()
+        });
+        // The header alone is read: a body that is not a PNG's would fail to decode.
+        let mut bytes = png(64, 64, [1, 2, 3]);
+        let body = bytes.len() / 2;
+        bytes[body..].fill(0);
+        let error = decode_texture(&bytes, "big.png", &ledger).unwrap_err();
+        assert!(
+            matches!(error, TextureError::OverBudget { .. }),
+            "{error:?}"
+        );
+        assert!(
+            error
+                .to_string()
+                .starts_with("texture big.png: decoding it would pass the memory bound: "),
+            "{error}"
+        );
+        assert!(ledger.refusal().is_some());
+    }
+
+    #[test]
+    fn halving_while_converting_gives_the_bits_of_converting_then_halving() {
+        let image = image::RgbaImage::from_fn(7, 5, |x, y| {
+            image::Rgba([
+                (x * 37 + y * 11) as u8,
+                (x * y * 13) as u8,
+                (y * 50) as u8,
+                200,
+            ])
+        });
+        let full = linear_base(&image, u64::MAX);
+        assert_eq!((full.width, full.height), (7, 5));
+        for max_texels in [35, 34, 6, 2, 1] {
+            let mut expected = full.clone();
+            while u64::from(expected.width) * u64::from(expected.height) > max_texels {
+                expected = halved(&expected);
+            }
+            let fused = linear_base(&image, max_texels);
+            assert_eq!(
+                (fused.width, fused.height),
+                (expected.width, expected.height)
+            );
+            assert_eq!(fused.texels, expected.texels, "max {max_texels}");
+        }
     }
 }

@@ -24,6 +24,9 @@ pub enum TextureError {
         max_side: u32,
         max_texels: u64,
     },
+    /// Decoding the texture would take the model past the memory bound; nothing was decoded.
+    #[error("texture {name}: decoding it would pass the memory bound: {figures}")]
+    OverBudget { name: String, figures: String },
     /// The image is damaged past its header.
     #[error("texture {name}: {reason}")]
     Decode { name: String, reason: String },

@@ -24,7 +24,7 @@ pub fn load_texture(
             name: reference.to_string(),
             error,
         })?;
-    decode_texture(&bytes, reference).map(Arc::new)
+    decode_texture(&bytes, reference, folder.textures()).map(Arc::new)
 }
 
 #[cfg(test)]

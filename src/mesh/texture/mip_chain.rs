@@ -18,19 +18,24 @@ pub fn mip_chain(base: MipLevel) -> Vec<MipLevel> {
 
 /// `level` at half its size (at least 1×1), each texel the mean of the 2×2 it covers.
 pub fn halved(level: &MipLevel) -> MipLevel {
-    let width = (level.width / 2).max(1);
-    let height = (level.height / 2).max(1);
+    halved_with(level.width, level.height, |x, y| level.texel(x, y))
+}
+
+/// A `width × height` level whose texel at (x, y) is `texel(x, y)`, at half its size (at least
+/// 1×1), each texel the mean of the 2×2 it covers.
+pub fn halved_with(
+    width_in: u32,
+    height_in: u32,
+    texel: impl Fn(u32, u32) -> [f32; 4],
+) -> MipLevel {
+    let width = (width_in / 2).max(1);
+    let height = (height_in / 2).max(1);
     let mut texels = Vec::with_capacity((width * height) as usize);
     for y in 0..height {
-        let (y0, y1) = (2 * y, (2 * y + 1).min(level.height - 1));
+        let (y0, y1) = (2 * y, (2 * y + 1).min(height_in - 1));
         for x in 0..width {
-            let (x0, x1) = (2 * x, (2 * x + 1).min(level.width - 1));
-            let quad = [
-                level.texel(x0, y0),
-                level.texel(x1, y0),
-                level.texel(x0, y1),
-                level.texel(x1, y1),
-            ];
+            let (x0, x1) = (2 * x, (2 * x + 1).min(width_in - 1));
+            let quad = [texel(x0, y0), texel(x1, y0), texel(x0, y1), texel(x1, y1)];
             texels.push(std::array::from_fn(|c| {
                 0.25 * (quad[0][c] + quad[1][c] + quad[2][c] + quad[3][c])
             }));

@@ -1,11 +1,13 @@
 //! Colour textures of model files: a PNG or JPEG read through the model's folder, decoded from
-//! sRGB to linear with its mip chain (`texture`, `decode`, `mip_chain`, `load`), sampled with
+//! sRGB to linear with its mip chain (`texture`, `decode`, `mip_chain`, `load`), its memory committed from its header before
+//! decoding (`ledger`), sampled with
 //! wrap modes and trilinear filtering (`sampler`), and what a model part carries of them
 //! (`appearance`).
 
 mod appearance;
 mod decode;
 mod error;
+mod ledger;
 mod limits;
 mod load;
 mod mip_chain;
@@ -17,6 +19,7 @@ mod uv_transform;
 pub use appearance::{AlphaMode, Appearance, TextureBinding};
 pub use decode::decode_texture;
 pub use error::TextureError;
+pub use ledger::{TextureLedger, decoded_texture_bytes};
 pub use limits::{MAX_TEXTURE_BASE_TEXELS, MAX_TEXTURE_DECLARED_TEXELS, MAX_TEXTURE_SIDE};
 pub use load::load_texture;
 pub use sampler::{Filter, MipFilter, Sampler, Wrap};
