@@ -88,8 +88,8 @@ pub fn decode_texture(
 /// `max_texels`, else halved until it does, where the first halving reads the 8-bit texels
 /// directly (the same sums as halving the linear image, without holding it).
 fn linear_base(rgba: &image::RgbaImage, max_texels: u64) -> MipLevel {
-    let linear = |x: u32, y: u32| {
-        let [r, g, b, a] = rgba.get_pixel(x, y).0;
+    let linear = |texel: &image::Rgba<u8>| {
+        let [r, g, b, a] = texel.0;
         [
             srgb_byte_to_linear(r),
             srgb_byte_to_linear(g),
@@ -102,13 +102,10 @@ fn linear_base(rgba: &image::RgbaImage, max_texels: u64) -> MipLevel {
         return MipLevel {
             width,
             height,
-            texels: rgba
-                .enumerate_pixels()
-                .map(|(x, y, _)| linear(x, y))
-                .collect(),
+            texels: rgba.pixels().map(linear).collect(),
         };
     }
-    let mut base = halved_with(width, height, linear);
+    let mut base = halved_with(width, height, |x, y| linear(rgba.get_pixel(x, y)));
     while u64::from(base.width) * u64::from(base.height) > max_texels {
         base = halved(&base);
     }
