@@ -257,8 +257,7 @@ fn the_editor_sends_the_rendered_image_over_kitty_and_deletes_it_on_quit() {
         protocol: Some(Protocol::Kitty),
         cells: GlyphSet::HalfBlock,
         cell: cell(10, 20),
-        tmux_pane: None,
-        why: None,
+        ..Graphics::default()
     };
     assert_eq!(
         Some((w, h)),
@@ -304,17 +303,20 @@ fn the_editor_sends_the_rendered_image_over_kitty_and_deletes_it_on_quit() {
 /// The editor on a pty as if inside tmux (`TMUX` set, and a `tmux` on the PATH that reports
 /// `allow-passthrough` as `passthrough` and the pane at the top-left), started in `dir`.
 fn editor_in_tmux(dir: &std::path::Path, passthrough: &str) -> pty::Editor {
+    editor_in_fake_tmux(
+        dir,
+        &format!("  *allow-passthrough*) echo {passthrough};;\n  *pane_left*) echo 0,0;;\n"),
+    )
+}
+
+/// The editor on a pty as if inside tmux, with a `tmux` on the PATH that answers as the shell
+/// `case` branches `cases` say (matched against its arguments), started in `dir`.
+fn editor_in_fake_tmux(dir: &std::path::Path, cases: &str) -> pty::Editor {
     use std::os::unix::fs::PermissionsExt;
     let bin = dir.join("bin");
     std::fs::create_dir_all(&bin).unwrap();
     let fake = bin.join("tmux");
-    std::fs::write(
-        &fake,
-        format!(
-            "#!/bin/sh\ncase \"$*\" in\n  *allow-passthrough*) echo {passthrough};;\n  *pane_left*) echo 0,0;;\nesac\n"
-        ),
-    )
-    .unwrap();
+    std::fs::write(&fake, format!("#!/bin/sh\ncase \"$*\" in\n{cases}esac\n")).unwrap();
     std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
     let path = format!(
         "{}:{}",
@@ -437,4 +439,127 @@ fn without_pixels_auto_draws_sextants_where_xtversion_names_a_terminal_known_to_
     // Without an answer, 1:2.
     let silent = choose(GraphicsRequest::Cells(GlyphSet::Braille), &xterm_env());
     assert_eq!(silent.cells_size(40, 20), (80, 80));
+}
+
+/// tmux (3.3a, passthrough on) answers at once; the kitty outside, named `version` by
+/// XTVERSION, answers what passed through a moment later, with cells of 8×19 pixels.
+fn answer_as_kitty_in_tmux(editor: &mut pty::Editor, version: &str) {
+    editor.read_until(|out| position(out, b"\x1b[c").is_some());
+    editor.keys(b"\x1bP>|tmux 3.3a\x1b\\\x1b[?1;2c");
+    std::thread::sleep(std::time::Duration::from_millis(150));
+    let kitty = format!("\x1b_Gi=31;OK\x1b\\\x1bP>|{version}\x1b\\\x1b[6;19;8t\x1b[4;570;800t");
+    editor.keys(kitty.as_bytes());
+}
+
+#[test]
+fn in_tmux_kitty_0_28_gets_a_virtual_placement_and_unicode_placeholder_cells() {
+    use rastray::terminal_image::kitty_placeholder::{self, PLACEHOLDER};
+    let dir = tempfile::tempdir().unwrap();
+    let mut editor = editor_in_tmux(dir.path(), "on");
+    // XTVERSION passes through tmux with the kitty query.
+    editor.read_until(|out| position(&unwrapped(out), b"\x1b_Gi=31").is_some());
+    let asked = unwrapped(&editor.output);
+    let query = position(&asked, b"\x1b_Gi=31").unwrap();
+    assert!(
+        position(&asked[query..], b"\x1b[>0q").is_some(),
+        "XTVERSION in the passthrough"
+    );
+    answer_as_kitty_in_tmux(&mut editor, "kitty(0.35.2)");
+    editor.read_until(|out| !kitty_pictures(&unwrapped(out)).is_empty());
+    editor.wait_for("kitty");
+    editor.settle(std::time::Duration::from_millis(300));
+    let out = unwrapped(&editor.output);
+    let (keys, _) = kitty_pictures(&out).remove(0);
+    // Sent with a virtual placement only: no cursor move, no placement at the cursor.
+    assert!(keys.starts_with("a=T,U=1,f=100,q=2,i="), "{keys}");
+    assert_eq!(
+        position(&out, b"\x1b7"),
+        None,
+        "no cursor saved for a placement"
+    );
+    assert_eq!(position(&out, b"C=1"), None, "no direct placement");
+    let id = control(&keys, "i").unwrap();
+    let (cols, rows) = (control(&keys, "c").unwrap(), control(&keys, "r").unwrap());
+    assert_eq!(id & 0xff, 1, "slot 0's id ends in colour 1");
+    let high = (id >> 24) as u8;
+    assert!(high >= 1, "the high byte tells editors apart");
+    // The preview's cells hold the placeholders: find the top-left one.
+    let screen = editor.screen();
+    let (w, h) = (100, 30);
+    let top_left = (0..h)
+        .flat_map(|r| (0..w).map(move |c| (r, c)))
+        .find(|&(r, c)| {
+            let cell = screen.cell(r, c).unwrap();
+            cell.contents().starts_with(PLACEHOLDER)
+        })
+        .expect("placeholder cells on the screen");
+    let (r0, c0) = top_left;
+    for (r, c) in [(0, 0), (0, 1), (1, 0), (rows - 1, cols - 1)] {
+        let cell = screen.cell(r0 + r as u16, c0 + c as u16).unwrap();
+        let expected = kitty_placeholder::cell(r as u16, c as u16, high).unwrap();
+        assert_eq!(cell.contents(), expected, "cell ({r}, {c})");
+        assert_eq!(cell.fgcolor(), vt100::Color::Idx(1), "cell ({r}, {c})");
+    }
+    // Row 0, column 1: U+0305 (0) then U+030D (1), as in kitty's documentation.
+    let second = screen.cell(r0, c0 + 1).unwrap().contents();
+    assert!(second.starts_with("\u{10EEEE}\u{305}\u{30D}"), "{second:?}");
+    // The area ends where the placeholders end.
+    let after = screen.cell(r0, c0 + cols as u16).unwrap().contents();
+    assert!(!after.starts_with(PLACEHOLDER), "{after:?}");
+    editor.keys(b"q");
+    assert!(editor.wait().success());
+    // On quit the image is deleted by id (deleting all leaves virtual placements).
+    let out = unwrapped(&editor.output);
+    let delete = format!("\x1b_Ga=d,d=I,i={id},q=2\x1b\\");
+    assert!(position(&out, delete.as_bytes()).is_some());
+}
+
+#[test]
+fn in_tmux_older_kitty_draws_cells_while_unfocused_and_deletes_the_picture_on_the_client() {
+    let dir = tempfile::tempdir().unwrap();
+    let client = dir.path().join("client-tty");
+    std::fs::write(&client, b"").unwrap();
+    let mut editor = editor_in_fake_tmux(
+        dir.path(),
+        &format!(
+            "  *allow-passthrough*) echo on;;\n  *client_tty*) echo {};;\n  *pane_left*) echo 0,0,1,;;\n",
+            client.display()
+        ),
+    );
+    answer_as_kitty_in_tmux(&mut editor, "kitty(0.26.5)");
+    editor.read_until(|out| !kitty_pictures(&unwrapped(out)).is_empty());
+    editor.wait_for("kitty");
+    assert!(
+        position(&editor.output, b"\x1b[?1004h").is_some(),
+        "focus reports asked for"
+    );
+    let (keys, _) = kitty_pictures(&unwrapped(&editor.output)).remove(0);
+    assert!(keys.contains("C=1"), "placed at the cursor: {keys}");
+    let id = control(&keys, "i").unwrap();
+    // tmux reports the focus lost (a window switch): the delete goes to the client terminal.
+    let before = editor.output.len();
+    editor.keys(b"\x1b[O");
+    let delete = format!("\x1b_Ga=d,d=I,i={id},q=2\x1b\\");
+    let start = std::time::Instant::now();
+    while std::fs::read(&client).unwrap() != delete.as_bytes() {
+        assert!(
+            start.elapsed() < pty::TIMEOUT,
+            "no delete on the client terminal"
+        );
+        editor.settle(std::time::Duration::from_millis(50));
+    }
+    // The preview is drawn in half blocks meanwhile, and no picture is sent.
+    editor.read_until(|out| position(&out[before..], "▀".as_bytes()).is_some());
+    editor.settle(std::time::Duration::from_millis(500));
+    assert!(kitty_pictures(&unwrapped(&editor.output[before..])).is_empty());
+    // The focus back: the picture is placed again through passthrough.
+    let before = editor.output.len();
+    editor.keys(b"\x1b[I");
+    editor.read_until(|out| !kitty_pictures(&unwrapped(&out[before..])).is_empty());
+    editor.keys(b"q");
+    assert!(editor.wait().success());
+    assert!(
+        position(&editor.output, b"\x1b[?1004l").is_some(),
+        "focus reports off"
+    );
 }

@@ -555,8 +555,7 @@ fn sixel_app(width: u16, height: u16) -> App {
             width: 10,
             height: 20,
         },
-        tmux_pane: None,
-        why: None,
+        ..Graphics::default()
     };
     let mut app = app().with_graphics(graphics.clone());
     let p = layout(Rect::new(0, 0, width, height), &app)

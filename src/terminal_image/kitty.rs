@@ -21,16 +21,35 @@ pub fn encode_pieces(
     area: CellArea,
     id: Option<u32>,
 ) -> Result<Vec<Vec<u8>>, image::ImageError> {
+    let id = id.map(|id| format!("i={id},C=1,")).unwrap_or_default();
+    pieces(
+        image,
+        &format!("a=T,f=100,q=2,{id}c={},r={},", area.cols, area.rows),
+    )
+}
+
+/// The escape sequences that send `image` as image `id` with a virtual placement (`U=1`) of
+/// `area`: nothing is drawn until cells hold its Unicode placeholders (see
+/// [`super::kitty_placeholder`]). Sending an id again replaces that image.
+pub fn encode_virtual(
+    image: &PreviewImage,
+    area: CellArea,
+    id: u32,
+) -> Result<Vec<u8>, image::ImageError> {
+    let head = format!("a=T,U=1,f=100,q=2,i={id},c={},r={},", area.cols, area.rows);
+    pieces(image, &head).map(|pieces| pieces.concat())
+}
+
+/// `image` as a PNG in base64 pieces, one escape sequence each, the first opening with the
+/// control keys `head`.
+fn pieces(image: &PreviewImage, head: &str) -> Result<Vec<Vec<u8>>, image::ImageError> {
     let pieces = base64_chunks::chunks(&png::encode(image)?, CHUNK);
     let mut out = Vec::with_capacity(pieces.len());
     for (i, piece) in pieces.iter().enumerate() {
         let more = u8::from(i + 1 < pieces.len());
         let mut sequence = b"\x1b_G".to_vec();
         if i == 0 {
-            let id = id.map(|id| format!("i={id},C=1,")).unwrap_or_default();
-            sequence.extend_from_slice(
-                format!("a=T,f=100,q=2,{id}c={},r={},", area.cols, area.rows).as_bytes(),
-            );
+            sequence.extend_from_slice(head.as_bytes());
         }
         sequence.extend_from_slice(format!("m={more};{piece}\x1b\\").as_bytes());
         out.push(sequence);

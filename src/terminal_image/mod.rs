@@ -11,6 +11,7 @@ pub mod glyph_cells;
 pub mod halfblock;
 pub mod iterm2;
 pub mod kitty;
+pub mod kitty_placeholder;
 pub mod median_cut;
 pub mod passthrough;
 pub mod png;

@@ -104,4 +104,6 @@ pub enum Action {
     Rendered(Box<RenderReply>),
     /// Periodic check of background jobs.
     Tick,
+    /// The terminal reported the pane focused (true) or not (focus reporting).
+    TerminalFocus(bool),
 }

@@ -37,15 +37,16 @@ const CELL_QUERY: &[u8] = b"\x1b[16t\x1b[14t";
 /// Primary device attributes: the sentinel every terminal answers.
 const DA1: &[u8] = b"\x1b[c";
 
-/// Everything asked at start-up, in order, DA1 last. Inside tmux (`in_tmux`) the kitty query
-/// and the size questions go through passthrough when tmux allows it (`passthrough`), since tmux
-/// answers neither for the terminal outside; when it does not allow it the kitty query is left
-/// out, as tmux would show it in the pane's title.
+/// Everything asked at start-up, in order, DA1 last. Inside tmux (`in_tmux`) the kitty query,
+/// XTVERSION and the size questions go through passthrough when tmux allows it
+/// (`passthrough`), since tmux answers none of them for the terminal outside (its own XTVERSION
+/// answer is asked for too); when it does not allow it the kitty query is left out, as tmux would
+/// show it in the pane's title.
 pub fn query(in_tmux: bool, passthrough: bool) -> Vec<u8> {
     match (in_tmux, passthrough) {
         (false, _) => [COLOR_QUERY, kitty::QUERY, SIZE_QUERY, DA1].concat(),
         (true, true) => {
-            let outside = passthrough::tmux(&[kitty::QUERY, CELL_QUERY].concat());
+            let outside = passthrough::tmux(&[kitty::QUERY, VERSION_QUERY, CELL_QUERY].concat());
             [COLOR_QUERY, &outside, VERSION_QUERY, DA1].concat()
         }
         (true, false) => [COLOR_QUERY, SIZE_QUERY, DA1].concat(),
@@ -134,12 +135,17 @@ pub fn facts(timeout: Option<Duration>) -> Facts {
         kitty_window: std::env::var_os("KITTY_WINDOW_ID").is_some(),
         in_tmux,
         tmux_passthrough,
-        tmux_pane: if in_tmux { tmux_pane() } else { (0, 0) },
+        tmux_pane: (0, 0),
+        tmux_focus_events: false,
+        tmux_client: None,
         winsize: window_size()
             .ok()
             .map(|w| (w.columns, w.rows, w.width, w.height)),
         replies: Vec::new(),
     };
+    if in_tmux {
+        (facts.tmux_pane, facts.tmux_focus_events, facts.tmux_client) = tmux_pane();
+    }
     // Asked even when everything is forced: the cell size gives every picture its aspect.
     if io::stdin().is_terminal() && io::stdout().is_terminal() {
         let passthrough = tmux_passthrough == Some(true);
@@ -169,17 +175,27 @@ fn tmux_allows_passthrough() -> Option<bool> {
         .then(|| matches!(value.trim(), "on" | "all"))
 }
 
-/// The current tmux pane's offset in the outer terminal, (0, 0) when tmux cannot say.
-fn tmux_pane() -> (u16, u16) {
+/// The current tmux pane's offset in the outer terminal ((0, 0) when tmux cannot say), whether
+/// tmux's `focus-events` is on, and the outer terminal's XTVERSION answer as tmux recorded it
+/// (`#{client_termtype}`, when not empty).
+fn tmux_pane() -> ((u16, u16), bool, Option<String>) {
     let out = std::process::Command::new("tmux")
-        .args(["display", "-p", "#{pane_left},#{pane_top}"])
+        .args([
+            "display",
+            "-p",
+            "#{pane_left},#{pane_top},#{focus-events},#{client_termtype}",
+        ])
         .output();
     let text = out
         .ok()
         .map(|o| String::from_utf8_lossy(&o.stdout).into_owned())
         .unwrap_or_default();
-    let mut numbers = text.trim().split(',').map(|n| n.parse().unwrap_or(0));
-    (numbers.next().unwrap_or(0), numbers.next().unwrap_or(0))
+    let mut fields = text.trim().splitn(4, ',');
+    let mut number = || fields.next().and_then(|n| n.parse().ok()).unwrap_or(0);
+    let offset = (number(), number());
+    let focus_events = number() == 1;
+    let client = fields.next().filter(|t| !t.is_empty()).map(str::to_string);
+    (offset, focus_events, client)
 }
 
 /// Writes `query` with raw mode on and collects the replies for at most `timeout` (see

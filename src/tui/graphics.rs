@@ -46,6 +46,19 @@ pub struct Graphics {
     /// Inside tmux with passthrough: images are wrapped for tmux and placed at the pane's
     /// offset in the outer terminal (column, row; 0-based).
     pub tmux_pane: Option<(u16, u16)>,
+    /// Inside tmux, in kitty 0.28 or later: kitty pictures are shown through Unicode
+    /// placeholder cells (see [`crate::terminal_image::kitty_placeholder`]), which tmux keeps
+    /// with the pane; the value is the images' most significant id byte (1..=255, from the
+    /// process id, so that two editors in one kitty window rarely share ids).
+    pub placeholders: Option<u8>,
+    /// Inside tmux in an older kitty (no placeholders): a picture belongs to the outer terminal,
+    /// and tmux passes nothing on from a pane in a window not shown. The editor asks for focus
+    /// reports, which tmux sends on a window switch (with its `focus-events` on); while the pane
+    /// is unfocused the preview is drawn in text cells, and on losing the focus the pictures are
+    /// deleted by writing to tmux's client terminal directly (see `tui::tmux_client`).
+    pub hides_unfocused: bool,
+    /// A word for the status line at start-up about how pictures behave.
+    pub notice: Option<String>,
     /// Why text cells are used where pixels were asked for or hinted at.
     pub why: Option<String>,
 }
@@ -69,6 +82,9 @@ impl Graphics {
             cells: set,
             cell,
             tmux_pane: None,
+            placeholders: None,
+            hides_unfocused: false,
+            notice: None,
             why,
         }
     }
@@ -136,6 +152,11 @@ pub struct Facts {
     pub tmux_passthrough: Option<bool>,
     /// The tmux pane's offset in the outer terminal, cells (column, row).
     pub tmux_pane: (u16, u16),
+    /// tmux's `focus-events` option (focus reports reach the panes).
+    pub tmux_focus_events: bool,
+    /// The terminal outside tmux as tmux knows it from its XTVERSION answer
+    /// (`#{client_termtype}`, `kitty(0.26.5)`); `None` outside tmux or when tmux does not say.
+    pub tmux_client: Option<String>,
     /// The terminal's size from the kernel (TIOCGWINSZ): columns, rows, and pixels (0 when the
     /// terminal does not fill them in).
     pub winsize: Option<(u16, u16, u16, u16)>,
@@ -169,6 +190,28 @@ impl Facts {
             Reply::Dcs(t) => t.strip_prefix(">|"),
             _ => None,
         })
+    }
+
+    /// Whether the terminal outside tmux is kitty 0.28 or later, which draws Unicode
+    /// placeholders: by an XTVERSION answer that passed through tmux, or by tmux's own record of
+    /// the client's.
+    fn kitty_placeholders(&self) -> bool {
+        let named = |text: &str| {
+            let Some(version) = text.strip_prefix("kitty(") else {
+                return false;
+            };
+            let mut numbers = version
+                .trim_end_matches(')')
+                .split('.')
+                .map(|n| n.parse::<u32>().unwrap_or(0));
+            let (major, minor) = (numbers.next().unwrap_or(0), numbers.next().unwrap_or(0));
+            (major, minor) >= (0, 28)
+        };
+        let answered = self.replies.iter().any(|r| match r {
+            Reply::Dcs(t) => t.strip_prefix(">|").is_some_and(named),
+            _ => false,
+        });
+        answered || self.tmux_client.as_deref().is_some_and(named)
     }
 
     /// The sharpest glyph set the terminal is known to draw: sextants in kitty, WezTerm, foot
@@ -287,12 +330,22 @@ pub fn choose(request: GraphicsRequest, facts: &Facts) -> Graphics {
     if through_tmux && !passthrough {
         return tmux_closed();
     }
+    let kitty_in_tmux = through_tmux && protocol == Protocol::Kitty;
+    let placeholders = kitty_in_tmux && facts.kitty_placeholders();
+    let hides_unfocused = kitty_in_tmux && !placeholders;
     Graphics {
         protocol: Some(protocol),
         // Frames drawn while keys arrive stay cheap.
         cells: GlyphSet::HalfBlock,
         cell: facts.cell(),
         tmux_pane: through_tmux.then_some(facts.tmux_pane),
+        placeholders: placeholders.then(|| (std::process::id() % 255 + 1) as u8),
+        hides_unfocused,
+        notice: (hides_unfocused && !facts.tmux_focus_events).then(|| {
+            "tmux focus-events is off: a picture stays over other windows \
+             (tmux set -s focus-events on)"
+                .to_string()
+        }),
         why: None,
     }
 }
@@ -311,6 +364,9 @@ mod tests {
                 height: 16,
             },
             tmux_pane: None,
+            placeholders: None,
+            hides_unfocused: false,
+            notice: None,
             why: None,
         };
         assert_eq!(g.pixel_size(40, 12), Some((320, 192)));

@@ -6,12 +6,35 @@
 //! leaves them alone from frame to frame and the picture stays. Anything that rewrites those
 //! cells (an overlay, a motion frame in half blocks, a resize) takes the picture off this layer
 //! first, and it is sent again when it comes back.
+//!
+//! Inside tmux, in kitty 0.28 or later, kitty pictures are Unicode placeholders instead: each
+//! slot's image keeps one id ([`placeholder_id`]), is sent with a virtual placement, and the view
+//! writes the placeholder cells (see `view::picture`), which tmux keeps with the pane.
 
 use ratatui::layout::Rect;
 
 use super::graphics::Graphics;
 use super::preview::PreviewImage;
-use crate::terminal_image::{CellArea, Protocol, kitty, passthrough};
+use crate::terminal_image::{CellArea, Protocol, kitty, kitty_placeholder, passthrough};
+
+/// Focus reporting on and off (DEC private mode 1004): the terminal, or tmux, sends `CSI I` when
+/// the pane gains the focus and `CSI O` when it loses it.
+const FOCUS_REPORTS_ON: &[u8] = b"\x1b[?1004h";
+const FOCUS_REPORTS_OFF: &[u8] = b"\x1b[?1004l";
+
+/// Slots a picture can take: the main preview and the three compare panes.
+const SLOTS: usize = 4;
+
+/// The 256-colour index that gives `slot`'s placeholder cells their image: the slot plus one.
+pub fn placeholder_colour(slot: usize) -> u8 {
+    slot as u8 + 1
+}
+
+/// The kitty image id of `slot`'s picture drawn with Unicode placeholders whose most significant
+/// id byte is `high`.
+pub fn placeholder_id(slot: usize, high: u8) -> u32 {
+    kitty_placeholder::id(placeholder_colour(slot), high)
+}
 
 /// One picture to show: its slot (0 the main preview, 1..=3 the compare panes), its cells, its
 /// image.
@@ -71,8 +94,14 @@ impl ImageLayer {
                 kept.push(self.placed.swap_remove(i));
                 continue;
             }
-            let id = self.next_id;
-            self.next_id = self.next_id.wrapping_add(1).max(1);
+            let id = match self.graphics.placeholders {
+                Some(high) => placeholder_id(p.slot, high),
+                None => {
+                    let id = self.next_id;
+                    self.next_id = self.next_id.wrapping_add(1).max(1);
+                    id
+                }
+            };
             if let Ok(bytes) = self.place(protocol, p, id) {
                 out.extend_from_slice(&bytes);
                 kept.push(Placed {
@@ -83,10 +112,13 @@ impl ImageLayer {
                 });
             }
         }
-        // What is left was replaced or is no longer wanted.
+        // What is left was replaced or is no longer wanted; a placeholder picture replaced in
+        // its slot kept its id, and sending it again replaced the image.
         if protocol == Protocol::Kitty {
             for gone in &self.placed {
-                out.extend_from_slice(&self.wrap(&kitty::delete(gone.id)));
+                if !kept.iter().any(|k| k.id == gone.id) {
+                    out.extend_from_slice(&self.wrap(&kitty::delete(gone.id)));
+                }
             }
         }
         self.placed = kept;
@@ -105,18 +137,52 @@ impl ImageLayer {
         }
     }
 
+    /// The bytes that start what the layer needs from the terminal: focus reports where
+    /// pictures leave with the focus ([`Graphics::hides_unfocused`]), else nothing.
+    pub fn enter(&self) -> Vec<u8> {
+        match self.graphics.hides_unfocused {
+            true => FOCUS_REPORTS_ON.to_vec(),
+            false => Vec::new(),
+        }
+    }
+
+    /// The pane lost the focus, perhaps to another tmux window, where tmux passes nothing on:
+    /// where pictures leave with the focus, the bytes that delete those on the screen, for the
+    /// outer terminal itself (not wrapped for tmux), and the layer forgets them so that they are
+    /// sent again when wanted; else nothing.
+    pub fn hide(&mut self) -> Vec<u8> {
+        if !self.graphics.hides_unfocused {
+            return Vec::new();
+        }
+        let placed = std::mem::take(&mut self.placed);
+        placed.iter().flat_map(|p| kitty::delete(p.id)).collect()
+    }
+
     /// The bytes that take every picture off the screen before the editor leaves: kitty images
-    /// are deleted; sixel and iTerm2 pictures are cells, cleared with the screen.
+    /// are deleted (those of placeholders by id, as deleting all leaves virtual placements);
+    /// sixel and iTerm2 pictures are cells, cleared with the screen.
     pub fn cleanup(&self) -> Vec<u8> {
         match self.graphics.protocol {
-            Some(Protocol::Kitty) => self.wrap(kitty::DELETE_ALL),
+            Some(Protocol::Kitty) => match self.graphics.placeholders {
+                Some(high) => {
+                    let deletes: Vec<u8> = (0..SLOTS)
+                        .flat_map(|slot| kitty::delete(placeholder_id(slot, high)))
+                        .collect();
+                    self.wrap(&deletes)
+                }
+                None if self.graphics.hides_unfocused => {
+                    [&self.wrap(kitty::DELETE_ALL), FOCUS_REPORTS_OFF].concat()
+                }
+                None => self.wrap(kitty::DELETE_ALL),
+            },
             Some(_) => b"\x1b[2J".to_vec(),
             None => Vec::new(),
         }
     }
 
     /// The bytes that draw `p` with `protocol` as kitty image `id`: the cursor moved to the
-    /// area's top-left cell, then the picture.
+    /// area's top-left cell, then the picture; or, with placeholders, the image and its virtual
+    /// placement alone (at most [`kitty_placeholder::MAX_CELLS`] a side).
     fn place(
         &self,
         protocol: Protocol,
@@ -127,6 +193,14 @@ impl ImageLayer {
             cols: u32::from(p.area.width.max(1)),
             rows: u32::from(p.area.height.max(1)),
         };
+        if self.graphics.placeholders.is_some() {
+            let most = u32::from(kitty_placeholder::MAX_CELLS);
+            let cells = CellArea {
+                cols: cells.cols.min(most),
+                rows: cells.rows.min(most),
+            };
+            return Ok(self.wrap(&kitty::encode_virtual(p.image, cells, id)?));
+        }
         // Kitty and iTerm2 stretch the picture over the cells; sixel draws it at its own size,
         // centred in them when the pixel budget made it smaller.
         let (at_x, at_y) = match protocol {
@@ -187,8 +261,7 @@ mod tests {
             protocol: Some(Protocol::Kitty),
             cells: crate::terminal_image::GlyphSet::HalfBlock,
             cell: CellSize::default(),
-            tmux_pane: None,
-            why: None,
+            ..Graphics::default()
         })
     }
 
@@ -253,6 +326,78 @@ mod tests {
         );
         assert!(text.ends_with("\x1b\x1b8\x1b\\"), "{text:?}");
         assert_eq!(text.matches("\x1bPtmux;").count(), 1, "{text:?}");
+    }
+
+    #[test]
+    fn placeholders_send_a_virtual_placement_under_one_id_a_slot_and_delete_by_id() {
+        let mut layer = ImageLayer::new(Graphics {
+            tmux_pane: Some((40, 1)),
+            placeholders: Some(7),
+            ..kitty_layer().graphics
+        });
+        let id = placeholder_id(0, 7);
+        assert_eq!(id, (7 << 24) | 1);
+        let area = Rect::new(3, 2, 10, 5);
+        let (a, b) = (image(10), image(200));
+        let first = layer.frame(&[Placement {
+            slot: 0,
+            area,
+            image: &a,
+        }]);
+        let text = String::from_utf8(first).unwrap();
+        let head = format!("\x1bPtmux;\x1b\x1b_Ga=T,U=1,f=100,q=2,i={id},c=10,r=5,");
+        assert!(text.starts_with(&head), "{text:?}");
+        assert!(
+            !text.contains("\x1b\x1b[") && !text.contains("\x1b\x1b7"),
+            "{text:?}"
+        );
+        // Another picture in the same slot replaces the image under the same id: no delete.
+        let changed = String::from_utf8(layer.frame(&[Placement {
+            slot: 0,
+            area,
+            image: &b,
+        }]))
+        .unwrap();
+        assert!(changed.contains(&format!("i={id},")) && !changed.contains("a=d"));
+        let gone = layer.frame(&[]);
+        assert_eq!(gone, passthrough::tmux(&kitty::delete(id)));
+        // On quit every slot's id is deleted; `d=A` would leave virtual placements.
+        let cleanup = String::from_utf8(layer.cleanup()).unwrap();
+        for slot in 0..SLOTS {
+            assert!(cleanup.contains(&format!("d=I,i={},", placeholder_id(slot, 7))));
+        }
+        assert!(!cleanup.contains("d=A"), "{cleanup:?}");
+    }
+
+    #[test]
+    fn where_pictures_leave_with_the_focus_hiding_deletes_them_for_the_outer_terminal() {
+        let mut layer = ImageLayer::new(Graphics {
+            tmux_pane: Some((0, 0)),
+            hides_unfocused: true,
+            ..kitty_layer().graphics
+        });
+        assert_eq!(layer.enter(), b"\x1b[?1004h");
+        let a = image(10);
+        let wanted = [Placement {
+            slot: 0,
+            area: Rect::new(3, 2, 10, 5),
+            image: &a,
+        }];
+        assert!(!layer.frame(&wanted).is_empty());
+        // Not wrapped: written to tmux's client terminal, past tmux.
+        assert_eq!(layer.hide(), kitty::delete(1));
+        assert!(layer.hide().is_empty(), "forgotten once deleted");
+        assert!(
+            layer.frame(&wanted).starts_with(b"\x1bPtmux;"),
+            "sent again"
+        );
+        assert!(layer.cleanup().ends_with(b"\x1b[?1004l"));
+        // Elsewhere nothing changes: no focus reports, nothing to hide.
+        let mut plain = kitty_layer();
+        assert!(plain.enter().is_empty());
+        assert!(!plain.frame(&wanted).is_empty());
+        assert!(plain.hide().is_empty());
+        assert_eq!(plain.cleanup(), kitty::DELETE_ALL);
     }
 
     #[test]

@@ -25,6 +25,8 @@ pub fn map(app: &App, event: &Event, preview: Rect) -> Option<Action> {
     match event {
         Event::Key(key) if key.kind != KeyEventKind::Release => key_action(app, key),
         Event::Mouse(mouse) => mouse_action(app, mouse, preview),
+        Event::FocusGained => Some(Action::TerminalFocus(true)),
+        Event::FocusLost => Some(Action::TerminalFocus(false)),
         _ => None,
     }
 }

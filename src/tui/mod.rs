@@ -31,6 +31,7 @@ pub mod term_input;
 pub mod terminal;
 pub mod text;
 pub mod theme;
+pub mod tmux_client;
 pub mod tty_input;
 pub mod update;
 pub mod view;
@@ -85,6 +86,9 @@ pub fn run(
     if let Some(why) = &startup.graphics.why {
         app.info(format!("half blocks: {why}"));
     }
+    if let Some(notice) = &startup.graphics.notice {
+        app.info(notice.clone());
+    }
     if let Some(notice) = recovery::notice(scene_path.as_deref()) {
         app.info(notice);
     }
@@ -106,6 +110,10 @@ pub fn run(
     });
     let mut guard = TerminalGuard::enter().map_err(TuiError::TerminalSetup)?;
     terminal::clean_up_with(images.cleanup());
+    let start = images.enter();
+    if !start.is_empty() {
+        guard.ask(&start).map_err(TuiError::TerminalSetup)?;
+    }
     let mut state = Loop {
         worker,
         sent: None,
@@ -184,6 +192,13 @@ pub fn run(
                 Event::Input(ev) => {
                     if let TermEvent::Resize(..) = ev {
                         images.invalidate();
+                    }
+                    if let TermEvent::FocusLost = ev {
+                        let delete = images.hide();
+                        // Best effort: without a client terminal the picture stays a while.
+                        if !delete.is_empty() {
+                            let _ = tmux_client::write(&delete);
+                        }
                     }
                     if matches!(ev, TermEvent::Key(_) | TermEvent::Mouse(_)) {
                         pacer.input(Instant::now());

@@ -43,6 +43,9 @@ pub struct ViewState {
     bounds: Option<(Vec3, Vec3)>,
     /// When auto-spin last turned the view, while it spins.
     spinning_since: Option<Instant>,
+    /// Whether the terminal reports this pane focused (focus reporting, see
+    /// [`Graphics::hides_unfocused`]); true until it says otherwise.
+    terminal_focused: bool,
 }
 
 impl ViewState {
@@ -61,6 +64,7 @@ impl ViewState {
             preset: None,
             bounds: None,
             spinning_since: None,
+            terminal_focused: true,
         }
     }
 
@@ -258,5 +262,16 @@ impl ViewState {
     /// Draws the preview with `graphics`.
     pub fn set_graphics(&mut self, graphics: Graphics) {
         self.graphics = graphics;
+    }
+
+    /// Whether the preview may show pictures in real pixels as far as focus goes: always,
+    /// unless [`Graphics::hides_unfocused`] and the terminal reported the pane unfocused.
+    pub fn pixels_while_focused(&self) -> bool {
+        self.terminal_focused || !self.graphics.hides_unfocused
+    }
+
+    /// Notes that the terminal reported the pane `focused` or not.
+    pub fn set_terminal_focused(&mut self, focused: bool) {
+        self.terminal_focused = focused;
     }
 }

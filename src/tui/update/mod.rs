@@ -32,6 +32,7 @@ pub fn apply(app: &mut App, action: Action) {
             app.ticked_change |= app.view.spin(std::time::Instant::now());
             return reload::poll_disk(app, std::time::Instant::now());
         }
+        Action::TerminalFocus(focused) => return app.view.set_terminal_focused(focused),
         _ => {}
     }
     let scene_camera = app.doc.scene().camera;

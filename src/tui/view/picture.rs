@@ -4,14 +4,15 @@
 
 use ratatui::buffer::Buffer;
 use ratatui::layout::{Alignment, Rect};
+use ratatui::style::Color;
 use ratatui::text::Line;
 use ratatui::widgets::{Paragraph, Widget};
 
 use super::{compare_panes, millis, pane};
-use crate::terminal_image::GlyphSet;
 use crate::terminal_image::glyph_cells::{self, CellChooser};
+use crate::terminal_image::{GlyphSet, kitty_placeholder};
 use crate::tui::app::{App, Shot};
-use crate::tui::image_layer::Placement;
+use crate::tui::image_layer::{Placement, placeholder_colour};
 use crate::tui::mode::Mode;
 use crate::tui::motion::CoarseMask;
 use crate::tui::preview::{ColorMode, PreviewImage, half_block_each};
@@ -126,11 +127,13 @@ impl Picture<'_> {
 
 /// Whether `shot`, shown over `area`, is a picture in real pixels: the editor draws with a
 /// graphics protocol, the image has the size rendered for that area (frames rendered in half-block
-/// size while keys arrive stay half blocks), and no dialog or help is open over the preview.
+/// size while keys arrive stay half blocks), no dialog or help is open over the preview, and the
+/// pane has the focus where pictures leave with it (see `Graphics::hides_unfocused`).
 fn shows_pixels(app: &App, area: Rect, shot: &Shot) -> bool {
     let size = app.view.graphics().pixel_size(area.width, area.height);
     size == Some((shot.image.width, shot.image.height))
         && matches!(app.mode, Mode::Normal | Mode::Edit(_))
+        && app.view.pixels_while_focused()
 }
 
 /// The pictures the preview shows in real pixels when the panes are laid out with the picture
@@ -160,13 +163,24 @@ pub fn placements(app: &App, picture: Rect) -> Vec<Placement<'_>> {
         .collect()
 }
 
-/// A shot drawn over `area`: half blocks, or blank cells under a picture in real pixels.
-fn draw_shot(app: &App, shot: &Shot, area: Rect, buf: &mut Buffer) {
+/// A shot drawn over `area` in `slot` (see [`placements`]): half blocks, or the cells under a
+/// picture in real pixels: blank, or kitty's Unicode placeholders where the picture is drawn
+/// with them (inside tmux, see `tui::image_layer`), the image id's low byte in the foreground.
+fn draw_shot(app: &App, slot: usize, shot: &Shot, area: Rect, buf: &mut Buffer) {
     if shows_pixels(app, area, shot) {
         buf.set_style(area, theme::PICTURE_UNDER);
+        let placeholders = app.view.graphics().placeholders;
+        if placeholders.is_some() {
+            buf.set_style(
+                area,
+                theme::PICTURE_UNDER.fg(Color::Indexed(placeholder_colour(slot))),
+            );
+        }
         for position in area.positions() {
+            let (row, col) = (position.y - area.y, position.x - area.x);
+            let symbol = placeholders.and_then(|high| kitty_placeholder::cell(row, col, high));
             if let Some(c) = buf.cell_mut(position) {
-                c.set_symbol(" ");
+                c.set_symbol(symbol.as_deref().unwrap_or(" "));
             }
         }
     } else {
@@ -221,11 +235,11 @@ impl Widget for PreviewPane<'_> {
                     .style(theme::HEADING)
                     .render(label, buf);
                 if let Some(s) = shot {
-                    draw_shot(app, s, image, buf);
+                    draw_shot(app, i + 1, s, image, buf);
                 }
             }
         } else if let Some(shot) = &app.previews.shot {
-            draw_shot(app, shot, inner, buf);
+            draw_shot(app, 0, shot, inner, buf);
         } else {
             Paragraph::new(Line::styled("rendering…", theme::DIM))
                 .alignment(Alignment::Center)
