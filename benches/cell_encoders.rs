@@ -9,10 +9,10 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::scene::default_scene;
+use rastray::terminal_image::ColorMode;
 use rastray::terminal_image::GlyphSet;
 use rastray::terminal_image::glyph_cells::{SAMPLES_X, SAMPLES_Y, encode};
-use rastray::tui::ColorMode;
-use rastray::tui::preview::PreviewImage;
+use rastray::terminal_image::preview::PreviewImage;
 
 const COLS: u32 = 160;
 const ROWS: u32 = 48;

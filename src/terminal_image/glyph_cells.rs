@@ -8,7 +8,7 @@
 //! braille 2×4 (3×3). So each sub-cell averages its own pixels, a box filter, and the choice sees
 //! the detail inside a sub-cell too.
 
-use crate::tui::preview::{ColorMode, PreviewImage, nearest_256};
+use super::preview::{ColorMode, PreviewImage, nearest_256};
 
 /// Pixels across one cell in the picture an encoder takes.
 pub const SAMPLES_X: u32 = 6;

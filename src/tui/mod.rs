@@ -5,41 +5,18 @@
 //! The app owns a [`document::Document`] (what is saved) and a [`view_state::ViewState`] (where
 //! the preview looks from): looking around never edits the scene.
 
-pub mod action;
-pub mod app;
-pub mod autosave;
-pub mod color_probe;
-pub mod compact_backend;
-pub mod disk_watch;
-pub mod document;
 pub mod error;
-pub mod export_job;
-pub mod fields;
-pub mod graphics;
-pub mod image_layer;
 pub mod input;
-pub mod keys;
-pub mod mode;
-pub mod motion;
-pub mod orbit;
-pub mod pacer;
-pub mod preview;
-pub mod recovery;
-pub mod selection;
-pub mod signals;
-pub mod term_input;
+pub mod persistence;
+pub mod state;
 pub mod terminal;
 pub mod text;
-pub mod theme;
-pub mod tty_input;
 pub mod update;
 pub mod view;
-pub mod view_state;
 pub mod worker;
 
 pub use error::TuiError;
-pub use preview::ColorMode;
-pub use signals::Exit;
+pub use terminal::signals::Exit;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -51,11 +28,14 @@ use ratatui::crossterm::event::Event as TermEvent;
 use ratatui::layout::Rect;
 
 use crate::scene::Scene;
-use action::Action;
-use app::App;
-use autosave::Autosave;
-use signals::Signals;
-use terminal::TerminalGuard;
+use input::action::Action;
+use persistence::autosave::Autosave;
+use persistence::recovery;
+use state::app::App;
+use state::{document, mode, selection};
+use terminal::guard::{self, TerminalGuard};
+use terminal::signals::Signals;
+use terminal::{color_probe, image_layer, pacer, term_input, tty_input};
 use worker::{Job, RenderReply, Slot, Wanted, Worker};
 
 /// How often the loop wakes without input: signal checks and the export gauge.
@@ -105,7 +85,7 @@ pub fn run(
         let _ = tx.send(Event::Render(reply));
     });
     let mut guard = TerminalGuard::enter().map_err(TuiError::TerminalSetup)?;
-    terminal::clean_up_with(images.cleanup());
+    guard::clean_up_with(images.cleanup());
     let mut state = Loop {
         worker,
         sent: None,

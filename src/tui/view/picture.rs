@@ -10,13 +10,13 @@ use ratatui::widgets::{Paragraph, Widget};
 use super::{compare_panes, millis, pane};
 use crate::terminal_image::GlyphSet;
 use crate::terminal_image::glyph_cells::{self, CellChooser};
-use crate::tui::app::{App, Shot};
-use crate::tui::image_layer::Placement;
-use crate::tui::mode::Mode;
-use crate::tui::motion::CoarseMask;
-use crate::tui::preview::{ColorMode, PreviewImage, half_block_each};
-use crate::tui::selection::Focus;
-use crate::tui::theme;
+use crate::terminal_image::preview::{ColorMode, PreviewImage, half_block_each};
+use crate::tui::state::app::{App, Shot};
+use crate::tui::state::mode::Mode;
+use crate::tui::state::selection::Focus;
+use crate::tui::terminal::image_layer::Placement;
+use crate::tui::terminal::motion::CoarseMask;
+use crate::tui::view::theme;
 
 /// An image drawn into cells: with half blocks, cell (c, r) shows pixels (c, 2r) over
 /// (c, 2r + 1); with a finer set, each cell is the glyph and two colours that best fit the

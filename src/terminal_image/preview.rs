@@ -3,8 +3,10 @@
 
 use ratatui::style::Color;
 
-use super::theme::TERMINAL_DEFAULT;
 use crate::render::Frame;
+
+/// The terminal's own colour: what a cell shows where the editor sets none.
+pub const TERMINAL_DEFAULT: Color = Color::Reset;
 
 /// How colours reach the terminal.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -85,7 +87,7 @@ pub fn half_block(upper: Option<[u8; 3]>, lower: Option<[u8; 3]>, mode: ColorMod
 }
 
 /// As [`half_block`], with a colour mode for each pixel (a motion frame draws some pixels in the
-/// 256-colour palette, see [`super::motion`]).
+/// 256-colour palette, see the editor's motion frames).
 pub fn half_block_each(
     upper: Option<([u8; 3], ColorMode)>,
     lower: Option<([u8; 3], ColorMode)>,

@@ -10,7 +10,7 @@
 use ratatui::layout::Rect;
 
 use super::graphics::Graphics;
-use super::preview::PreviewImage;
+use crate::terminal_image::preview::PreviewImage;
 use crate::terminal_image::{CellArea, Protocol, kitty, passthrough};
 
 /// One picture to show: its slot (0 the main preview, 1..=3 the compare panes), its cells, its
