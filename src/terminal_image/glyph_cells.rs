@@ -741,4 +741,33 @@ mod tests {
             }
         }
     }
+
+    /// The exact bytes of a small frame in every set and colour mode, pinned (FNV-1a of the
+    /// text and its length) from the encoder as it was before its colours were made faster: a
+    /// speed-up must not change a byte. The frame is a smooth colour ramp with a hard diagonal
+    /// edge, so that every set picks many glyphs and both modes many colours.
+    #[test]
+    fn a_small_frames_bytes_are_pinned_in_every_set_and_mode() {
+        let image = picture(8, 3, |x, y| {
+            let edge = x + 2 * y > 30;
+            let r = (x * 255 / 47) as u8;
+            let g = (y * 255 / 35) as u8;
+            let b = if edge { 220 } else { 40 + (x * y % 97) as u8 };
+            [r, g, b]
+        });
+        let mut text = String::new();
+        for mode in [ColorMode::Truecolor, ColorMode::Ansi256] {
+            for set in GlyphSet::ALL {
+                text.push_str(&encode(&image, 8, 3, set, mode));
+            }
+        }
+        let hash = text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+            (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+        });
+        assert_eq!(
+            (text.len(), hash),
+            (5548, 5_768_063_708_871_852_975),
+            "{text:?}"
+        );
+    }
 }
