@@ -218,20 +218,21 @@ impl FineSums {
     /// The sums of cell (`col`, `row`); pixels beyond the image count as black.
     fn of(image: &PreviewImage, col: u32, row: u32) -> FineSums {
         let mut strips = [[0u32; 3]; 24];
-        let x0 = col * SAMPLES_X;
-        for y in 0..SAMPLES_Y {
-            let py = row * SAMPLES_Y + y;
-            if py >= image.height {
-                break;
-            }
-            let line = (py * image.width) as usize;
-            for x in 0..SAMPLES_X {
-                let px = x0 + x;
-                if px >= image.width {
-                    break;
-                }
-                let pixel = image.pixels[line + px as usize];
-                let strip = &mut strips[(y * 2 + x / 3) as usize];
+        let x0 = (col * SAMPLES_X).min(image.width) as usize;
+        let x1 = ((col + 1) * SAMPLES_X).min(image.width) as usize;
+        let y0 = row * SAMPLES_Y;
+        let rows = SAMPLES_Y.min(image.height.saturating_sub(y0)) as usize;
+        // Each pixel row of the cell as one slice: no bounds check per pixel.
+        let start = (y0 as usize).saturating_mul(image.width as usize);
+        let lines = image
+            .pixels
+            .get(start..)
+            .unwrap_or_default()
+            .chunks(image.width.max(1) as usize)
+            .take(rows);
+        for (pair, line) in strips.chunks_exact_mut(2).zip(lines) {
+            for (x, pixel) in line[x0..x1].iter().enumerate() {
+                let strip = &mut pair[x / 3];
                 strip[0] += u32::from(pixel[0]);
                 strip[1] += u32::from(pixel[1]);
                 strip[2] += u32::from(pixel[2]);
@@ -769,5 +770,19 @@ mod tests {
             (5548, 5_768_063_708_871_852_975),
             "{text:?}"
         );
+    }
+
+    /// A cell partly or wholly outside the picture reads its missing pixels as black and does
+    /// not panic.
+    #[test]
+    fn cells_beyond_the_picture_count_as_black() {
+        let white = picture(1, 1, |_, _| [255; 3]);
+        let mut chooser = CellChooser::new(GlyphSet::Quadrant);
+        for (col, row) in [(1, 0), (0, 1), (3, 5)] {
+            let cell = chooser.choose(&white, col, row);
+            assert_eq!((cell.fg, cell.bg), ([0; 3], [0; 3]), "cell {col},{row}");
+        }
+        let empty = PreviewImage::default();
+        assert_eq!(chooser.choose(&empty, 0, 0).bg, [0; 3]);
     }
 }
