@@ -6,10 +6,10 @@ use std::time::{Duration, Instant};
 
 use rastray::export::{AnimationFormat, ImageFormat, Output, PngDepth, Turntable};
 use rastray::scene::default_scene;
-use rastray::tui::action::Action;
-use rastray::tui::app::App;
-use rastray::tui::export_job::export_output;
-use rastray::tui::mode::Mode;
+use rastray::tui::input::action::Action;
+use rastray::tui::persistence::export_job::export_output;
+use rastray::tui::state::app::App;
+use rastray::tui::state::mode::Mode;
 use rastray::tui::update::apply;
 
 /// A bound on waiting for the export thread, so a broken one fails the test instead of hanging.

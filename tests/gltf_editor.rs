@@ -8,9 +8,9 @@ use std::time::Duration;
 
 use rastray::render::Algorithm;
 use rastray::scene::{Shape, default_scene};
-use rastray::tui::action::Action;
-use rastray::tui::app::App;
-use rastray::tui::mode::{AddKind, Mode};
+use rastray::tui::input::action::Action;
+use rastray::tui::state::app::App;
+use rastray::tui::state::mode::{AddKind, Mode};
 use rastray::tui::update::apply;
 use rastray::tui::worker::{Job, RenderReply, Slot, Wanted, Worker};
 

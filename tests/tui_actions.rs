@@ -5,11 +5,11 @@ use std::path::PathBuf;
 use glam::Vec3;
 use rastray::render::Algorithm;
 use rastray::scene::{Shape, ShapeKind, default_scene};
-use rastray::tui::action::Action;
-use rastray::tui::app::App;
-use rastray::tui::fields::Key;
-use rastray::tui::mode::{AddKind, Mode};
-use rastray::tui::selection::{Focus, Item};
+use rastray::tui::input::action::Action;
+use rastray::tui::state::app::App;
+use rastray::tui::state::fields::Key;
+use rastray::tui::state::mode::{AddKind, Mode};
+use rastray::tui::state::selection::{Focus, Item};
 use rastray::tui::update::{apply, field_keys};
 
 fn app() -> App {
@@ -74,7 +74,7 @@ fn add_box_and_colour_it() {
     assert_eq!(app.item(), Item::Object(before));
     assert!(app.document().is_dirty());
 
-    choose(&mut app, Key::Color(rastray::tui::fields::Axis::X));
+    choose(&mut app, Key::Color(rastray::tui::state::fields::Axis::X));
     run(&mut app, typed("0.1"));
     assert_eq!(*app.mode(), Mode::Normal);
     assert_eq!(app.document().scene().objects[before].material.color.x, 0.1);
@@ -198,7 +198,7 @@ fn vector_components_are_edited_one_at_a_time() {
     let Shape::Box { size, .. } = app.document().scene().objects[2].shape else {
         panic!("a box")
     };
-    choose(&mut app, Key::Size(rastray::tui::fields::Axis::Y));
+    choose(&mut app, Key::Size(rastray::tui::state::fields::Axis::Y));
     run(&mut app, typed("3"));
     let Shape::Box { size: new, .. } = app.document().scene().objects[2].shape else {
         panic!("a box")
@@ -304,7 +304,10 @@ fn typing_a_camera_property_edits_the_scene_and_moves_the_view_there() {
     let mut app = app();
     run(&mut app, look_around());
     select(&mut app, Item::Settings);
-    choose(&mut app, Key::CameraPosition(rastray::tui::fields::Axis::X));
+    choose(
+        &mut app,
+        Key::CameraPosition(rastray::tui::state::fields::Axis::X),
+    );
     run(&mut app, typed("1.5"));
     let camera = app.document().scene().camera;
     assert_eq!(camera.position.x, 1.5);

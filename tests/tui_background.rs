@@ -7,9 +7,9 @@ use std::time::Duration;
 
 use rastray::render::Algorithm;
 use rastray::scene::default_scene;
-use rastray::tui::action::Action;
-use rastray::tui::app::{App, Tone};
-use rastray::tui::mode::Mode;
+use rastray::tui::input::action::Action;
+use rastray::tui::state::app::{App, Tone};
+use rastray::tui::state::mode::Mode;
 use rastray::tui::update::apply;
 use rastray::tui::worker::{Job, RenderReply, Slot, Wanted, Worker};
 

@@ -2,7 +2,7 @@
 
 #[test]
 fn docs_key_map_matches_the_help_overlay() {
-    let table = rastray::tui::keys::markdown();
+    let table = rastray::tui::input::keys::markdown();
     for file in ["docs/keys.md", "README.md"] {
         let path = format!("{}/{file}", env!("CARGO_MANIFEST_DIR"));
         let docs = std::fs::read_to_string(&path).expect("the file exists");

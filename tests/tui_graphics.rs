@@ -12,13 +12,13 @@ use base64::engine::general_purpose::STANDARD;
 use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::scene::default_scene;
+use rastray::terminal_image::ColorMode;
+use rastray::terminal_image::preview::PreviewImage;
 use rastray::terminal_image::{CellSize, GlyphSet, Protocol, kitty};
-use rastray::tui::ColorMode;
-use rastray::tui::app::App;
-use rastray::tui::color_probe::{decide, query};
-use rastray::tui::graphics::{Facts, Graphics, GraphicsRequest, choose};
-use rastray::tui::preview::PreviewImage;
-use rastray::tui::term_input::{Decoder, Reply, TermInput};
+use rastray::tui::state::app::App;
+use rastray::tui::terminal::color_probe::{decide, query};
+use rastray::tui::terminal::graphics::{Facts, Graphics, GraphicsRequest, choose};
+use rastray::tui::terminal::term_input::{Decoder, Reply, TermInput};
 use ratatui::layout::Rect;
 use rustix::termios::Winsize;
 
@@ -85,7 +85,7 @@ fn a_sixel_xterm_gets_sixel_with_the_cell_size_from_its_text_area() {
     assert_eq!(color, ColorMode::Ansi256);
     let (w, h) = graphics.pixel_size(100, 30).unwrap();
     assert_eq!(h % 6, 0, "whole sixel bands");
-    assert!(u64::from(w) * u64::from(h) <= rastray::tui::graphics::PIXEL_BUDGET);
+    assert!(u64::from(w) * u64::from(h) <= rastray::tui::terminal::graphics::PIXEL_BUDGET);
 }
 
 #[test]
@@ -268,7 +268,7 @@ fn the_editor_sends_the_rendered_image_over_kitty_and_deletes_it_on_quit() {
         (w as f32 / h as f32 / pane_aspect - 1.0).abs() < 0.01,
         "{w}x{h}"
     );
-    assert!(u64::from(w) * u64::from(h) <= rastray::tui::graphics::PIXEL_BUDGET);
+    assert!(u64::from(w) * u64::from(h) <= rastray::tui::terminal::graphics::PIXEL_BUDGET);
     if let Ok(out) = std::env::var("RASTRAY_EDITOR_KITTY_PNG") {
         shown.save(out).unwrap();
     }

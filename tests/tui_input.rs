@@ -4,12 +4,12 @@ use std::path::PathBuf;
 
 use rastray::render::Algorithm;
 use rastray::scene::default_scene;
-use rastray::tui::action::Action;
-use rastray::tui::app::App;
+use rastray::tui::input::action::Action;
+use rastray::tui::input::keys::{Context, Does, KEYS, Trigger, add_hotkey};
 use rastray::tui::input::{self, map};
-use rastray::tui::keys::{Context, Does, KEYS, Trigger, add_hotkey};
-use rastray::tui::mode::{AddKind, Mode};
-use rastray::tui::selection::Focus;
+use rastray::tui::state::app::App;
+use rastray::tui::state::mode::{AddKind, Mode};
+use rastray::tui::state::selection::Focus;
 use rastray::tui::update::apply;
 use ratatui::crossterm::event::{
     Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,

@@ -8,9 +8,9 @@ use std::time::{Duration, Instant, SystemTime};
 
 use glam::Vec3;
 use rastray::scene::{Scene, default_scene, to_toml_string};
-use rastray::tui::action::Action;
-use rastray::tui::app::App;
-use rastray::tui::selection::Item;
+use rastray::tui::input::action::Action;
+use rastray::tui::state::app::App;
+use rastray::tui::state::selection::Item;
 use rastray::tui::update::apply;
 use rastray::tui::worker::{Job, RenderReply, Slot, Wanted, Worker};
 

@@ -5,11 +5,11 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use rastray::scene::{default_scene, to_toml_string};
-use rastray::tui::action::Action;
-use rastray::tui::app::App;
-use rastray::tui::autosave::Autosave;
-use rastray::tui::mode::AddKind;
-use rastray::tui::recovery::{self, RecoveryFile};
+use rastray::tui::input::action::Action;
+use rastray::tui::persistence::autosave::Autosave;
+use rastray::tui::persistence::recovery::{self, RecoveryFile};
+use rastray::tui::state::app::App;
+use rastray::tui::state::mode::AddKind;
 use rastray::tui::update::apply;
 
 /// Longest wait for the background thread (slow CI machines included).

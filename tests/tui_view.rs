@@ -8,14 +8,14 @@ use glam::Vec3;
 use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::scene::default_scene;
+use rastray::terminal_image::preview::{ColorMode, PreviewImage, halves_match, nearest_256};
 use rastray::terminal_image::{CellSize, Protocol};
-use rastray::tui::action::Action;
-use rastray::tui::app::App;
-use rastray::tui::graphics::Graphics;
+use rastray::tui::input::action::Action;
+use rastray::tui::input::keys::KEYS;
 use rastray::tui::input::map_too_small;
-use rastray::tui::keys::KEYS;
-use rastray::tui::preview::{ColorMode, PreviewImage, halves_match, nearest_256};
-use rastray::tui::selection::{Focus, Item};
+use rastray::tui::state::app::App;
+use rastray::tui::state::selection::{Focus, Item};
+use rastray::tui::terminal::graphics::Graphics;
 use rastray::tui::update::apply;
 use rastray::tui::view::{Picture, layout};
 use rastray::tui::worker::{RenderReply, Slot};
@@ -313,7 +313,7 @@ fn the_help_shows_every_row_of_the_key_table_whole() {
     fill_previews(&mut app, 110, 36);
     apply(&mut app, Action::Help);
     let mut screens = String::new();
-    for _ in 0..rastray::tui::keys::KEYS.len() {
+    for _ in 0..rastray::tui::input::keys::KEYS.len() {
         let terminal = draw(&app, 110, 36);
         let buffer = terminal.backend().buffer();
         for y in 0..36 {
@@ -323,7 +323,7 @@ fn the_help_shows_every_row_of_the_key_table_whole() {
         }
         apply(&mut app, Action::Down);
     }
-    for row in rastray::tui::keys::KEYS {
+    for row in rastray::tui::input::keys::KEYS {
         let line = format!("{} ", row.keys());
         assert!(
             screens

@@ -8,8 +8,8 @@ use std::time::Duration;
 
 use rastray::render::Algorithm;
 use rastray::scene::{Scene, default_scene};
-use rastray::tui::action::Action;
-use rastray::tui::app::{App, Tone};
+use rastray::tui::input::action::Action;
+use rastray::tui::state::app::{App, Tone};
 use rastray::tui::update::apply;
 use rastray::tui::worker::{Job, RenderReply, Slot, Wanted, Worker};
 use rastray::warnings::Warning;

@@ -3,8 +3,8 @@
 //! validation refuses too (so the editor reaches the edge of what a file may hold).
 
 use rastray::scene::{Scene, from_toml_str, validate};
-use rastray::tui::fields::{Key, Part, Range, Value, stepped, typed};
-use rastray::tui::selection::Item;
+use rastray::tui::state::fields::{Key, Part, Range, Value, stepped, typed};
+use rastray::tui::state::selection::Item;
 
 /// Every item kind, with a camera whose position and target lie far apart across the view: no
 /// coordinate bound of one can make the view vertical (a different rule, checked elsewhere).

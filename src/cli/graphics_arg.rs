@@ -1,9 +1,9 @@
 //! The `--graphics` values, shared by the editor and `rastray view`.
 
 use clap::ValueEnum;
+use rastray::terminal_image::ColorMode;
 use rastray::terminal_image::{GlyphSet, Protocol};
-use rastray::tui::ColorMode;
-use rastray::tui::graphics::GraphicsRequest;
+use rastray::tui::terminal::graphics::GraphicsRequest;
 
 /// How to draw pictures: asked of the terminal, or one protocol.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, ValueEnum)]

@@ -33,8 +33,8 @@ use clap::{CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 use rastray::mesh::EXPECTED_MODEL;
 use rastray::render::Size;
 use rastray::scene::{SceneError, UpAxis};
+use rastray::terminal_image::ColorMode;
 use rastray::text_escape::Escaped;
-use rastray::tui::ColorMode;
 use rastray::world::{MeshFileCache, WorldReport};
 use rastray::{Scene, World};
 
@@ -200,7 +200,8 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
             let graphics = cli.graphics.or(defaults.graphics).unwrap_or_default();
             let request = graphics.editor_request()?;
             let color = cli.color.or(defaults.color);
-            let startup = rastray::tui::color_probe::detect(color.map(ColorMode::from), request);
+            let startup =
+                rastray::tui::terminal::color_probe::detect(color.map(ColorMode::from), request);
             let up = cli.up.or(defaults.up);
             refuse_up_without_model(cli.scene.as_deref(), cli.up)?;
             let exit = rastray::tui::run(cli.scene, up.unwrap_or_default(), startup)?;

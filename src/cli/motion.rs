@@ -21,10 +21,10 @@ use rastray::World;
 use rastray::export::Turntable;
 use rastray::render::{Frame, Progress, RenderOptions, Renderer};
 use rastray::scene::Camera;
+use rastray::terminal_image::preview::PreviewImage;
 use rastray::terminal_image::{CellArea, Protocol, kitty};
-use rastray::tui::pacer::{self, Pacer};
-use rastray::tui::preview::PreviewImage;
-use rastray::tui::term_input::{Reply, TermInput};
+use rastray::tui::terminal::pacer::{self, Pacer};
+use rastray::tui::terminal::term_input::{Reply, TermInput};
 use ratatui::crossterm::event::{Event, KeyCode, KeyEventKind, KeyModifiers};
 use signal_hook::consts::{SIGINT, SIGTERM};
 
@@ -93,7 +93,7 @@ pub fn play(
     let (send, input) = mpsc::channel();
     let mut screen = Screen::new(interactive, picture.area.rows)?;
     if interactive {
-        rastray::tui::tty_input::spawn(move |i| send.send(i).is_ok())?;
+        rastray::tui::terminal::tty_input::spawn(move |i| send.send(i).is_ok())?;
     }
     let mut pacer = if interactive {
         Pacer::new()

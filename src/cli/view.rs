@@ -11,8 +11,8 @@ use anyhow::Context;
 use clap::Args;
 use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
+use rastray::terminal_image::preview::PreviewImage;
 use rastray::terminal_image::{CellArea, Protocol};
-use rastray::tui::preview::PreviewImage;
 
 use super::algorithm_arg::AlgorithmArg;
 use super::camera_args::CameraArgs;

@@ -10,9 +10,9 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use rastray::render::{Frame, Progress, RenderOptions, Renderer};
+use rastray::terminal_image::preview::PreviewImage;
 use rastray::terminal_image::{CellArea, CellSize, Protocol};
 use rastray::text_escape::Escaped;
-use rastray::tui::preview::PreviewImage;
 
 use super::camera_args::CameraArgs;
 use super::display_args::DisplayArgs;

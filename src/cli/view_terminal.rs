@@ -6,8 +6,8 @@ use std::io::IsTerminal;
 use std::time::Duration;
 
 use rastray::terminal_image::{CellSize, Protocol};
-use rastray::tui::color_probe;
-use rastray::tui::graphics::{self, Facts, GraphicsRequest};
+use rastray::tui::terminal::color_probe;
+use rastray::tui::terminal::graphics::{self, Facts, GraphicsRequest};
 
 use super::graphics_arg::GraphicsArg;
 

@@ -8,7 +8,7 @@
 //! braille 2×4 (3×3). So each sub-cell averages its own pixels, a box filter, and the choice sees
 //! the detail inside a sub-cell too.
 
-use crate::tui::preview::{ColorMode, PreviewImage, nearest_256};
+use super::preview::{ColorMode, PreviewImage, nearest_256};
 
 /// Pixels across one cell in the picture an encoder takes.
 pub const SAMPLES_X: u32 = 6;
@@ -218,20 +218,21 @@ impl FineSums {
     /// The sums of cell (`col`, `row`); pixels beyond the image count as black.
     fn of(image: &PreviewImage, col: u32, row: u32) -> FineSums {
         let mut strips = [[0u32; 3]; 24];
-        let x0 = col * SAMPLES_X;
-        for y in 0..SAMPLES_Y {
-            let py = row * SAMPLES_Y + y;
-            if py >= image.height {
-                break;
-            }
-            let line = (py * image.width) as usize;
-            for x in 0..SAMPLES_X {
-                let px = x0 + x;
-                if px >= image.width {
-                    break;
-                }
-                let pixel = image.pixels[line + px as usize];
-                let strip = &mut strips[(y * 2 + x / 3) as usize];
+        let x0 = (col * SAMPLES_X).min(image.width) as usize;
+        let x1 = ((col + 1) * SAMPLES_X).min(image.width) as usize;
+        let y0 = row * SAMPLES_Y;
+        let rows = SAMPLES_Y.min(image.height.saturating_sub(y0)) as usize;
+        // Each pixel row of the cell as one slice: no bounds check per pixel.
+        let start = (y0 as usize).saturating_mul(image.width as usize);
+        let lines = image
+            .pixels
+            .get(start..)
+            .unwrap_or_default()
+            .chunks(image.width.max(1) as usize)
+            .take(rows);
+        for (pair, line) in strips.chunks_exact_mut(2).zip(lines) {
+            for (x, pixel) in line[x0..x1].iter().enumerate() {
+                let strip = &mut pair[x / 3];
                 strip[0] += u32::from(pixel[0]);
                 strip[1] += u32::from(pixel[1]);
                 strip[2] += u32::from(pixel[2]);
@@ -740,5 +741,48 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The exact bytes of a small frame in every set and colour mode, pinned (FNV-1a of the
+    /// text and its length) from the encoder as it was before its colours were made faster: a
+    /// speed-up must not change a byte. The frame is a smooth colour ramp with a hard diagonal
+    /// edge, so that every set picks many glyphs and both modes many colours.
+    #[test]
+    fn a_small_frames_bytes_are_pinned_in_every_set_and_mode() {
+        let image = picture(8, 3, |x, y| {
+            let edge = x + 2 * y > 30;
+            let r = (x * 255 / 47) as u8;
+            let g = (y * 255 / 35) as u8;
+            let b = if edge { 220 } else { 40 + (x * y % 97) as u8 };
+            [r, g, b]
+        });
+        let mut text = String::new();
+        for mode in [ColorMode::Truecolor, ColorMode::Ansi256] {
+            for set in GlyphSet::ALL {
+                text.push_str(&encode(&image, 8, 3, set, mode));
+            }
+        }
+        let hash = text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+            (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+        });
+        assert_eq!(
+            (text.len(), hash),
+            (5548, 5_768_063_708_871_852_975),
+            "{text:?}"
+        );
+    }
+
+    /// A cell partly or wholly outside the picture reads its missing pixels as black and does
+    /// not panic.
+    #[test]
+    fn cells_beyond_the_picture_count_as_black() {
+        let white = picture(1, 1, |_, _| [255; 3]);
+        let mut chooser = CellChooser::new(GlyphSet::Quadrant);
+        for (col, row) in [(1, 0), (0, 1), (3, 5)] {
+            let cell = chooser.choose(&white, col, row);
+            assert_eq!((cell.fg, cell.bg), ([0; 3], [0; 3]), "cell {col},{row}");
+        }
+        let empty = PreviewImage::default();
+        assert_eq!(chooser.choose(&empty, 0, 0).bg, [0; 3]);
     }
 }

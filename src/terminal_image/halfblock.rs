@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use ratatui::style::Color;
 
-use crate::tui::preview::{ColorMode, PreviewImage, half_block};
+use super::preview::{ColorMode, PreviewImage, half_block};
 
 /// Characters from dark to light for plain text.
 pub const RAMP: &[u8] = b" .:-=+*#%@";

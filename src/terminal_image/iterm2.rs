@@ -1,8 +1,8 @@
 //! iTerm2 inline images (also WezTerm): one OSC 1337 sequence carrying a base64 PNG, sized in
 //! cells.
 
+use super::preview::PreviewImage;
 use super::{CellArea, base64_chunks, png};
-use crate::tui::preview::PreviewImage;
 
 /// The escape sequence that shows `image` over `area`.
 pub fn encode(image: &PreviewImage, area: CellArea) -> Result<Vec<u8>, image::ImageError> {

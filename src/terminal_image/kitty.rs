@@ -2,8 +2,8 @@
 //! (`a=T`) over a cell area (`c=`, `r=`), with the terminal's replies turned off (`q=2`).
 //! The editor gives each picture an id, so that it can replace and delete it.
 
+use super::preview::PreviewImage;
 use super::{CellArea, base64_chunks, png};
-use crate::tui::preview::PreviewImage;
 
 /// Largest base64 piece in one escape sequence, as the protocol requires.
 pub const CHUNK: usize = 4096;

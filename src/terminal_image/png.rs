@@ -1,6 +1,6 @@
 //! An 8-bit sRGB picture as PNG bytes, for the protocols that carry PNG.
 
-use crate::tui::preview::PreviewImage;
+use super::preview::PreviewImage;
 
 /// `image` as an RGB PNG.
 pub fn encode(image: &PreviewImage) -> Result<Vec<u8>, image::ImageError> {

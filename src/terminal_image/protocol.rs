@@ -1,7 +1,7 @@
 //! Which way to draw a picture, chosen by the user or guessed from the environment.
 
+use super::preview::{ColorMode, PreviewImage};
 use super::{CellArea, CellSize, GlyphSet, glyph_cells, halfblock, iterm2, kitty, sixel};
-use crate::tui::preview::{ColorMode, PreviewImage};
 
 /// A way to put a picture on a terminal.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

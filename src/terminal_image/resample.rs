@@ -1,7 +1,7 @@
 //! Pictures brought to another pixel grid: a render made with square pixels, taken to the
 //! grid an encoder samples (a fixed number of samples a cell, whatever the cell's shape).
 
-use crate::tui::preview::PreviewImage;
+use super::preview::PreviewImage;
 
 /// `image` at `width`×`height` pixels, each pixel the source pixel under its centre (nearest
 /// neighbour). Exact when one size divides the other; the same image when the size is its own.

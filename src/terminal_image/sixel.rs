@@ -4,7 +4,7 @@
 use std::fmt::Write;
 
 use super::median_cut::Palette;
-use crate::tui::preview::PreviewImage;
+use super::preview::PreviewImage;
 
 /// Most colours in a sixel palette.
 pub const MAX_COLOURS: usize = 256;

@@ -5,58 +5,37 @@
 //! The app owns a [`document::Document`] (what is saved) and a [`view_state::ViewState`] (where
 //! the preview looks from): looking around never edits the scene.
 
-pub mod action;
-pub mod app;
-pub mod autosave;
-pub mod color_probe;
-pub mod compact_backend;
-pub mod disk_watch;
-pub mod document;
 pub mod error;
-pub mod export_job;
-pub mod fields;
-pub mod graphics;
-pub mod image_layer;
 pub mod input;
-pub mod keys;
-pub mod mode;
-pub mod motion;
-pub mod orbit;
-pub mod pacer;
-pub mod preview;
-pub mod recovery;
-pub mod selection;
-pub mod signals;
-pub mod term_input;
+pub mod persistence;
+pub mod state;
 pub mod terminal;
 pub mod text;
-pub mod theme;
-pub mod tmux_client;
-pub mod tty_input;
 pub mod update;
 pub mod view;
-pub mod view_state;
 pub mod worker;
 
 pub use error::TuiError;
-pub use preview::ColorMode;
-pub use signals::Exit;
+pub use terminal::signals::Exit;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::mpsc::{RecvTimeoutError, channel};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, channel};
 use std::time::{Duration, Instant};
 
 use ratatui::crossterm::event::Event as TermEvent;
 use ratatui::layout::Rect;
 
 use crate::scene::Scene;
-use action::Action;
-use app::App;
-use autosave::Autosave;
-use signals::Signals;
-use terminal::TerminalGuard;
+use input::action::Action;
+use persistence::autosave::Autosave;
+use persistence::recovery;
+use state::app::App;
+use state::{document, mode, selection};
+use terminal::guard::{self, TerminalGuard};
+use terminal::signals::Signals;
+use terminal::{color_probe, image_layer, pacer, term_input, tmux_client, tty_input};
 use worker::{Job, RenderReply, Slot, Wanted, Worker};
 
 /// How often the loop wakes without input: signal checks and the export gauge.
@@ -78,193 +57,277 @@ pub fn run(
     up: crate::scene::UpAxis,
     startup: color_probe::Startup,
 ) -> Result<Exit, TuiError> {
-    let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
-    let mut app = load(scene_path.as_deref(), up)?
-        .with_color(startup.color)
-        .with_plain_interface(no_color)
-        .with_graphics(startup.graphics.clone());
-    if let Some(why) = &startup.graphics.why {
-        app.info(format!("half blocks: {why}"));
-    }
-    if let Some(notice) = &startup.graphics.notice {
-        app.info(notice.clone());
-    }
-    if let Some(notice) = recovery::notice(scene_path.as_deref()) {
-        app.info(notice);
-    }
-    let mut images = image_layer::ImageLayer::new(startup.graphics);
-    let signals = Signals::watch().map_err(TuiError::Signals)?;
-    let mut autosave = Autosave::start().map_err(TuiError::Autosave)?;
-    let (tx, rx) = channel();
-    let input_tx = tx.clone();
-    tty_input::spawn(move |input| {
-        let event = match input {
-            term_input::TermInput::Event(e) => Event::Input(e),
-            term_input::TermInput::Reply(r) => Event::Reply(r),
-        };
-        input_tx.send(event).is_ok()
-    })
-    .map_err(TuiError::Input)?;
-    let worker = Worker::spawn(move |reply| {
-        let _ = tx.send(Event::Render(reply));
-    });
-    let mut guard = TerminalGuard::enter().map_err(TuiError::TerminalSetup)?;
-    terminal::clean_up_with(images.cleanup());
-    let start = images.enter();
-    if !start.is_empty() {
-        guard.ask(&start).map_err(TuiError::TerminalSetup)?;
-    }
-    let mut state = Loop {
-        worker,
-        sent: None,
-        latest: 0,
-        scene: (u64::MAX, Arc::new(app.doc.scene().clone())),
-        latency: LatencyLog::from_env(),
-        pending: None,
-        motion_frames: false,
-    };
-    let mut redraw = true;
-    let mut pacer = pacer::Pacer::new();
-    let ended = loop {
-        let size = match guard.terminal.size() {
-            Ok(size) => size,
-            Err(e) => break Err(TuiError::Terminal(e)),
-        };
-        if app.quit {
-            break Ok(Exit::Quit);
+    let mut editor = Editor::start(scene_path, up, startup)?;
+    let ended = editor.event_loop();
+    editor.await_last_answer();
+    editor.close(ended)
+}
+
+/// The running editor: its state, the terminal it draws on, and the threads that feed it
+/// events. Its fields are declared in the order they are made, so they are dropped in reverse.
+struct Editor {
+    app: App,
+    images: image_layer::ImageLayer,
+    signals: Signals,
+    autosave: Autosave,
+    /// Keys, terminal replies and rendered frames, from the input and render threads.
+    events: Receiver<Event>,
+    guard: TerminalGuard,
+    state: Loop,
+    pacer: pacer::Pacer,
+    /// Whether something changed since the last frame drawn.
+    redraw: bool,
+}
+
+impl Editor {
+    /// Loads the scene, starts the signal watch, autosave, input and render threads, and takes
+    /// over the terminal.
+    fn start(
+        scene_path: Option<PathBuf>,
+        up: crate::scene::UpAxis,
+        startup: color_probe::Startup,
+    ) -> Result<Editor, TuiError> {
+        let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
+        let mut app = load(scene_path.as_deref(), up)?
+            .with_color(startup.color)
+            .with_plain_interface(no_color)
+            .with_graphics(startup.graphics.clone());
+        if let Some(why) = &startup.graphics.why {
+            app.info(format!("half blocks: {why}"));
         }
-        let areas = view::layout(Rect::new(0, 0, size.width, size.height), &app);
-        let now = Instant::now();
-        // Real pixels once keys pause; frames rendered while they arrive are half blocks.
-        let pixels = !pacer.moving(now);
-        state.request(&app, areas.map(|a| a.picture), pixels);
-        // At most one frame in flight: the next waits for the terminal's answer to the last.
-        if (redraw || pacer.needs_exact(now)) && pacer.may_draw(now) {
-            let started = Instant::now();
-            let cheap = app.present_previews(pacer.moving(now) && pacer.should_ask());
-            let pictures = areas.map_or_else(Vec::new, |a| view::placements(&app, a.picture));
-            let picture_bytes = images.frame(&pictures);
-            if let Err(e) = guard.draw(|f| f.render_widget(&app, f.area()), &picture_bytes) {
-                break Err(TuiError::Terminal(e));
-            }
-            if pacer.should_ask() {
-                if let Err(e) = guard.ask(pacer::QUERY) {
-                    break Err(TuiError::Terminal(e));
-                }
-                pacer.carrying(picture_bytes.len());
-                pacer.asked(now, cheap);
-            } else {
-                pacer.drew(cheap);
-            }
-            state.drawn(started);
-            redraw = false;
+        if let Some(notice) = &startup.graphics.notice {
+            app.info(notice.clone());
         }
+        if let Some(notice) = recovery::notice(scene_path.as_deref()) {
+            app.info(notice);
+        }
+        let images = image_layer::ImageLayer::new(startup.graphics);
+        let signals = Signals::watch().map_err(TuiError::Signals)?;
+        let autosave = Autosave::start().map_err(TuiError::Autosave)?;
+        let (tx, events) = channel();
+        let input_tx = tx.clone();
+        tty_input::spawn(move |input| {
+            let event = match input {
+                term_input::TermInput::Event(e) => Event::Input(e),
+                term_input::TermInput::Reply(r) => Event::Reply(r),
+            };
+            input_tx.send(event).is_ok()
+        })
+        .map_err(TuiError::Input)?;
+        let worker = Worker::spawn(move |reply| {
+            let _ = tx.send(Event::Render(reply));
+        });
+        let mut guard = TerminalGuard::enter().map_err(TuiError::TerminalSetup)?;
+        guard::clean_up_with(images.cleanup());
+        let start = images.enter();
+        if !start.is_empty() {
+            guard.ask(&start).map_err(TuiError::TerminalSetup)?;
+        }
+        let state = Loop {
+            worker,
+            sent: None,
+            latest: 0,
+            scene: (u64::MAX, Arc::new(app.doc.scene().clone())),
+            latency: LatencyLog::from_env(),
+            pending: None,
+            motion_frames: false,
+        };
+        Ok(Editor {
+            app,
+            images,
+            signals,
+            autosave,
+            events,
+            guard,
+            state,
+            pacer: pacer::Pacer::new(),
+            redraw: true,
+        })
+    }
+
+    /// Requests renders, draws, and applies the events that arrive, until the user quits, a
+    /// signal ends the editor, or the terminal or the event threads fail.
+    fn event_loop(&mut self) -> Result<Exit, TuiError> {
+        loop {
+            let size = self.guard.terminal.size().map_err(TuiError::Terminal)?;
+            if self.app.quit {
+                return Ok(Exit::Quit);
+            }
+            let areas = view::layout(Rect::new(0, 0, size.width, size.height), &self.app);
+            let now = Instant::now();
+            // Real pixels once keys pause; frames rendered while they arrive are half blocks.
+            let pixels = !self.pacer.moving(now);
+            self.state
+                .request(&self.app, areas.map(|a| a.picture), pixels);
+            // At most one frame in flight: the next waits for the terminal's answer to the last.
+            if (self.redraw || self.pacer.needs_exact(now)) && self.pacer.may_draw(now) {
+                self.draw(now, areas)?;
+            }
+            let first = self.next_event()?;
+            self.redraw |= first.is_none() && self.app.is_exporting();
+            // Handle everything already queued before drawing again: a held key draws once.
+            let mut next = first.or_else(|| self.events.try_recv().ok());
+            while let Some(event) = next {
+                self.handle(event, areas);
+                next = self.events.try_recv().ok();
+            }
+            update::apply(&mut self.app, Action::Tick);
+            self.redraw |= std::mem::take(&mut self.app.ticked_change);
+            if let Some(problem) = self.autosave.note(&self.app) {
+                self.app.error(problem);
+            }
+            if let Some(signal) = self.signals.received() {
+                return Ok(Exit::Signal(signal));
+            }
+        }
+    }
+
+    /// Draws the cells and the pictures over them; where the pacer asks, then asks the
+    /// terminal to answer once it has the frame. `now` is when this turn of the loop began.
+    fn draw(&mut self, now: Instant, areas: Option<view::Areas>) -> Result<(), TuiError> {
+        let started = Instant::now();
+        let cheap = self
+            .app
+            .present_previews(self.pacer.moving(now) && self.pacer.should_ask());
+        let pictures = areas.map_or_else(Vec::new, |a| view::placements(&self.app, a.picture));
+        let picture_bytes = self.images.frame(&pictures);
+        let app = &self.app;
+        self.guard
+            .draw(|f| f.render_widget(app, f.area()), &picture_bytes)
+            .map_err(TuiError::Terminal)?;
+        if self.pacer.should_ask() {
+            self.guard.ask(pacer::QUERY).map_err(TuiError::Terminal)?;
+            self.pacer.carrying(picture_bytes.len());
+            self.pacer.asked(now, cheap);
+        } else {
+            self.pacer.drew(cheap);
+        }
+        self.state.drawn(started);
+        self.redraw = false;
+        Ok(())
+    }
+
+    /// The next event, waited for until the pacer or a frame to be redrawn in pixels needs the
+    /// loop, and at most a [`TICK`]; `None` when none came.
+    fn next_event(&mut self) -> Result<Option<Event>, TuiError> {
         // Frames rendered in half blocks while keys arrived are rendered again in pixels once
         // the keys pause.
-        let settle = state.motion_frames.then(|| pacer.settles_at()).flatten();
-        let wake = [pacer.wake_at(), settle].into_iter().flatten().min();
+        let settle = self
+            .state
+            .motion_frames
+            .then(|| self.pacer.settles_at())
+            .flatten();
+        let wake = [self.pacer.wake_at(), settle].into_iter().flatten().min();
         let wait = wake.map_or(TICK, |at| {
             at.saturating_duration_since(Instant::now()).min(TICK)
         });
-        let first = match rx.recv_timeout(wait) {
-            Ok(e) => Some(e),
-            Err(RecvTimeoutError::Timeout) => None,
-            Err(RecvTimeoutError::Disconnected) => {
-                break Err(TuiError::EventsStopped);
-            }
-        };
-        redraw |= first.is_none() && app.is_exporting();
-        // Handle everything already queued before drawing again: a held key draws once.
-        for event in first
-            .into_iter()
-            .chain(std::iter::from_fn(|| rx.try_recv().ok()))
-        {
-            if let Event::Reply(reply) = &event {
-                if let term_input::Reply::CursorPosition { .. } = reply {
-                    pacer.answered(Instant::now());
-                }
-                continue;
-            }
-            redraw = true;
-            let picture = areas.map(|a| a.preview).unwrap_or_default();
-            let action = match event {
-                Event::Reply(_) => None,
-                Event::Input(ev) => {
-                    if let TermEvent::Resize(..) = ev {
-                        images.invalidate();
-                    }
-                    if let TermEvent::FocusLost = ev {
-                        let delete = images.hide();
-                        // Best effort: without a client terminal the picture stays a while.
-                        if !delete.is_empty() {
-                            let _ = tmux_client::write(&delete);
-                        }
-                    }
-                    if matches!(ev, TermEvent::Key(_) | TermEvent::Mouse(_)) {
-                        pacer.input(Instant::now());
-                    }
-                    if let Some(log) = &mut state.latency {
-                        log.key_at.get_or_insert(Instant::now());
-                    }
-                    if areas.is_some() {
-                        input::map(&app, &ev, picture)
-                    } else {
-                        input::map_too_small(&app, &ev)
-                    }
-                }
-                // A frame for a superseded request is stale: dropped. Warnings describe the
-                // world built, whichever request built it: kept.
-                Event::Render(reply)
-                    if reply.id() == state.latest
-                        || matches!(
-                            reply,
-                            RenderReply::Warned { .. }
-                                | RenderReply::Bounds { .. }
-                                | RenderReply::ModelFiles { .. }
-                        ) =>
-                {
-                    state.arrived(&reply);
-                    Some(Action::Rendered(Box::new(reply)))
-                }
-                Event::Render(_) => None,
-            };
-            if let Some(action) = action {
-                update::apply(&mut app, action);
-            }
-        }
-        update::apply(&mut app, Action::Tick);
-        redraw |= std::mem::take(&mut app.ticked_change);
-        if let Some(problem) = autosave.note(&app) {
-            app.error(problem);
-        }
-        if let Some(signal) = signals.received() {
-            break Ok(Exit::Signal(signal));
-        }
-    };
-    // An answer to a query still on its way would reach the shell as typed text: wait a little
-    // for it while the editor still reads its input.
-    let until = Instant::now() + pacer::LAST_ANSWER;
-    while pacer.awaiting() {
-        let left = until.saturating_duration_since(Instant::now());
-        match rx.recv_timeout(left) {
-            Ok(Event::Reply(term_input::Reply::CursorPosition { .. })) => {
-                pacer.answered(Instant::now())
-            }
-            Ok(_) => {}
-            Err(_) => break,
+        match self.events.recv_timeout(wait) {
+            Ok(e) => Ok(Some(e)),
+            Err(RecvTimeoutError::Timeout) => Ok(None),
+            Err(RecvTimeoutError::Disconnected) => Err(TuiError::EventsStopped),
         }
     }
-    // Edits reach the disk before the terminal is touched: it may be gone.
-    let recovered = match ended {
-        Ok(Exit::Quit) => autosave.quit().map(|()| None),
-        _ => autosave.flush(&app).transpose(),
-    };
-    drop(guard);
-    recovery::report(&recovered);
-    // A lost terminal fails a draw just before its SIGHUP arrives: the signal tells the story.
-    signals
-        .received()
-        .map_or(ended, |signal| Ok(Exit::Signal(signal)))
+
+    /// Applies one event: the terminal's answer goes to the pacer, a key or mouse event becomes
+    /// an Action through the key map, and a frame for the newest request becomes one too.
+    fn handle(&mut self, event: Event, areas: Option<view::Areas>) {
+        if let Event::Reply(reply) = &event {
+            if let term_input::Reply::CursorPosition { .. } = reply {
+                self.pacer.answered(Instant::now());
+            }
+            return;
+        }
+        self.redraw = true;
+        let picture = areas.map(|a| a.preview).unwrap_or_default();
+        let action = match event {
+            Event::Reply(_) => None,
+            Event::Input(ev) => {
+                if let TermEvent::Resize(..) = ev {
+                    self.images.invalidate();
+                }
+                if let TermEvent::FocusLost = ev {
+                    let delete = self.images.hide();
+                    // Best effort: without a client terminal the picture stays a while.
+                    if !delete.is_empty() {
+                        let _ = tmux_client::write(&delete);
+                    }
+                }
+                if matches!(ev, TermEvent::Key(_) | TermEvent::Mouse(_)) {
+                    self.pacer.input(Instant::now());
+                }
+                if let Some(log) = &mut self.state.latency {
+                    log.key_at.get_or_insert(Instant::now());
+                }
+                if areas.is_some() {
+                    input::map(&self.app, &ev, picture)
+                } else {
+                    input::map_too_small(&self.app, &ev)
+                }
+            }
+            // A frame for a superseded request is stale: dropped. Warnings describe the
+            // world built, whichever request built it: kept.
+            Event::Render(reply)
+                if reply.id() == self.state.latest
+                    || matches!(
+                        reply,
+                        RenderReply::Warned { .. }
+                            | RenderReply::Bounds { .. }
+                            | RenderReply::ModelFiles { .. }
+                    ) =>
+            {
+                self.state.arrived(&reply);
+                Some(Action::Rendered(Box::new(reply)))
+            }
+            Event::Render(_) => None,
+        };
+        if let Some(action) = action {
+            update::apply(&mut self.app, action);
+        }
+    }
+
+    /// An answer to a query still on its way would reach the shell as typed text: waits a
+    /// little for it while the editor still reads its input.
+    fn await_last_answer(&mut self) {
+        let until = Instant::now() + pacer::LAST_ANSWER;
+        while self.pacer.awaiting() {
+            let left = until.saturating_duration_since(Instant::now());
+            match self.events.recv_timeout(left) {
+                Ok(Event::Reply(term_input::Reply::CursorPosition { .. })) => {
+                    self.pacer.answered(Instant::now())
+                }
+                Ok(_) => {}
+                Err(_) => break,
+            }
+        }
+    }
+
+    /// The way out: edits reach the disk (the recovery file, unless the user quit) before the
+    /// terminal is restored, since it may be gone; then how the editor `ended`.
+    fn close(self, ended: Result<Exit, TuiError>) -> Result<Exit, TuiError> {
+        // Bound in the order they were made, so that they drop in reverse as they always did:
+        // the render thread before autosave, the signal watch last but the app and pictures.
+        let Editor {
+            app,
+            images: _images,
+            signals,
+            autosave,
+            events: _events,
+            guard,
+            state: _state,
+            pacer: _pacer,
+            redraw: _,
+        } = self;
+        let recovered = match ended {
+            Ok(Exit::Quit) => autosave.quit().map(|()| None),
+            _ => autosave.flush(&app).transpose(),
+        };
+        drop(guard);
+        recovery::report(&recovered);
+        // A lost terminal fails a draw just before its SIGHUP arrives: the signal tells the story.
+        signals
+            .received()
+            .map_or(ended, |signal| Ok(Exit::Signal(signal)))
+    }
 }
 
 /// The editor on the scene at `path`; a path that does not exist yet starts a new scene there

@@ -6,7 +6,6 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
 
-use super::preview::PreviewImage;
 use crate::World;
 use crate::memory_budget::{BYTES_PER_STILL_PIXEL, Estimate};
 use crate::mesh::{Measurements, measure};
@@ -15,6 +14,7 @@ use crate::render::{
     ground_grid, objects_without_uvs, overlay_bounds,
 };
 use crate::scene::{Camera, Scene};
+use crate::terminal_image::preview::PreviewImage;
 use crate::warnings::{Warning, warnings};
 use crate::world::{MeshFileCache, WorldObjectSource};
 

@@ -1,6 +1,6 @@
 //! Edits of the scene: stepping and typing values, adding, duplicating and removing items,
 //! setting the camera from the view, undo and redo. Every change is one undoable
-//! [`crate::tui::document::Document::edit`].
+//! [`crate::tui::state::document::Document::edit`].
 
 use std::path::PathBuf;
 
@@ -8,10 +8,10 @@ use glam::Vec3;
 
 use super::{chosen_key, field_keys};
 use crate::scene::{Light, Object, Shape, ShapeKind};
-use crate::tui::app::App;
-use crate::tui::fields::{self, Part};
-use crate::tui::mode::{AddKind, LineEdit, Mode, PromptPurpose};
-use crate::tui::selection::{Focus, Item};
+use crate::tui::state::app::App;
+use crate::tui::state::fields::{self, Part};
+use crate::tui::state::mode::{AddKind, LineEdit, Mode, PromptPurpose};
+use crate::tui::state::selection::{Focus, Item};
 
 /// Makes the view the scene's camera, as one undoable edit.
 pub(super) fn camera_from_view(app: &mut App) {

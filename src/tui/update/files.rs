@@ -7,11 +7,11 @@ use super::{type_into, type_line};
 use crate::export::ImageFormat;
 use crate::render::{Algorithm, RenderOptions, Size};
 use crate::scene::{Object, Shape, ShapeKind};
-use crate::tui::action::Action;
-use crate::tui::app::{App, Previews};
-use crate::tui::export_job::{ExportJob, export_output};
-use crate::tui::mode::{ExportField, ExportForm, LineEdit, Mode, PromptPurpose};
-use crate::tui::selection::{Selection, wrap_step};
+use crate::tui::input::action::Action;
+use crate::tui::persistence::export_job::{ExportJob, export_output};
+use crate::tui::state::app::{App, Previews};
+use crate::tui::state::mode::{ExportField, ExportForm, LineEdit, Mode, PromptPurpose};
+use crate::tui::state::selection::{Selection, wrap_step};
 
 pub(super) fn path_text(app: &App) -> String {
     app.doc

@@ -1,6 +1,6 @@
 //! Applies an [`Action`] to the [`App`]: the one place the editor's state changes. The document
-//! changes through [`super::document::Document`]'s methods and the view through
-//! [`super::view_state::ViewState`]'s.
+//! changes through [`crate::tui::state::document::Document`]'s methods and the view through
+//! [`crate::tui::state::view_state::ViewState`]'s.
 
 mod edits;
 mod files;
@@ -11,12 +11,12 @@ pub use files::open;
 use edits::{add, begin_edit, camera_from_view, duplicate, redo, remove, step_field, undo};
 use files::{cancel_export, export_form, open_export, path_text, poll_export, prompt, save};
 
-use super::action::Action;
-use super::app::{App, Shot};
-use super::fields::{self, Part};
-use super::mode::{AddKind, LineEdit, Mode, PromptPurpose};
-use super::selection::{Focus, wrap_step};
 use super::worker::{RenderReply, Slot};
+use crate::tui::input::action::Action;
+use crate::tui::state::app::{App, Shot};
+use crate::tui::state::fields::{self, Part};
+use crate::tui::state::mode::{AddKind, LineEdit, Mode, PromptPurpose};
+use crate::tui::state::selection::{Focus, wrap_step};
 
 /// Degrees turned per mouse column dragged.
 const DRAG_YAW: f32 = 2.0;
@@ -43,7 +43,9 @@ pub fn apply(app: &mut App, action: Action) {
         Mode::Help(scroll) => match action {
             Action::Up => app.mode = Mode::Help(scroll.saturating_sub(1)),
             Action::Down => {
-                app.mode = Mode::Help((scroll + 1).min(super::keys::KEYS.len().saturating_sub(1)))
+                app.mode = Mode::Help(
+                    (scroll + 1).min(crate::tui::input::keys::KEYS.len().saturating_sub(1)),
+                )
             }
             _ => {}
         },
@@ -103,7 +105,7 @@ fn normal(app: &mut App, action: Action) {
         }
         Action::Open => {
             // Offer the recovery file when there is one: the status line pointed at it.
-            let recovered = crate::tui::recovery::path_for(app.doc.path());
+            let recovered = crate::tui::persistence::recovery::path_for(app.doc.path());
             let text = if recovered.is_file() {
                 recovered.display().to_string()
             } else {

@@ -6,10 +6,10 @@ use std::path::Path;
 use std::time::Instant;
 
 use super::field_keys;
-use crate::tui::app::App;
-use crate::tui::disk_watch::DiskChange;
+use crate::tui::persistence::disk_watch::DiskChange;
+use crate::tui::state::app::App;
 
-/// Looks at the watched files (at most every [`crate::tui::disk_watch::POLL_EVERY`]) and takes
+/// Looks at the watched files (at most every [`crate::tui::persistence::disk_watch::POLL_EVERY`]) and takes
 /// in what changed.
 pub(super) fn poll_disk(app: &mut App, now: Instant) {
     match app.disk.poll(&app.doc, now) {

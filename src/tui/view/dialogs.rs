@@ -6,9 +6,9 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Clear, List, ListItem, ListState, Paragraph, StatefulWidget, Widget, Wrap};
 
 use super::pane;
-use crate::tui::keys::add_hotkey;
-use crate::tui::mode::{AddKind, ExportField, ExportForm, LineEdit, PromptPurpose};
-use crate::tui::theme;
+use crate::tui::input::keys::add_hotkey;
+use crate::tui::state::mode::{AddKind, ExportField, ExportForm, LineEdit, PromptPurpose};
+use crate::tui::view::theme;
 
 /// A `width`×`height` rectangle centred in `area`, clipped to it.
 pub fn centered(area: Rect, width: u16, height: u16) -> Rect {

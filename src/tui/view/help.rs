@@ -7,8 +7,8 @@ use ratatui::widgets::{Cell, Clear, Row, Table, Widget};
 
 use super::dialogs::centered;
 use super::pane;
-use crate::tui::keys::KEYS;
-use crate::tui::theme;
+use crate::tui::input::keys::KEYS;
+use crate::tui::view::theme;
 
 /// A centred table of [`KEYS`], scrolled down by the given number of rows.
 pub struct HelpOverlay(pub usize);

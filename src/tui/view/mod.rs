@@ -7,6 +7,7 @@ mod picture;
 mod properties;
 mod scene_list;
 mod status;
+pub mod theme;
 
 pub use picture::{Picture, placements};
 
@@ -15,10 +16,9 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::Line;
 use ratatui::widgets::{Block, BorderType, Paragraph, Widget};
 
-use super::app::App;
-use super::mode::Mode;
-use super::theme;
 use crate::render::Algorithm;
+use crate::tui::state::app::App;
+use crate::tui::state::mode::Mode;
 
 /// Smallest terminal that shows the editor, columns × rows.
 pub const MIN_SIZE: (u16, u16) = (20, 8);

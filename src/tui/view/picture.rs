@@ -1,5 +1,5 @@
 //! The preview pane: the rendered image in text cells (half blocks, quadrants, sextants or
-//! braille) or as a picture in real pixels (drawn by `tui::image_layer` over blank cells), or the
+//! braille) or as a picture in real pixels (drawn by `tui::terminal::image_layer` over blank cells), or the
 //! three algorithms side by side.
 
 use ratatui::buffer::Buffer;
@@ -10,14 +10,14 @@ use ratatui::widgets::{Paragraph, Widget};
 
 use super::{compare_panes, millis, pane};
 use crate::terminal_image::glyph_cells::{self, CellChooser};
+use crate::terminal_image::preview::{ColorMode, PreviewImage, half_block_each};
 use crate::terminal_image::{GlyphSet, kitty_placeholder};
-use crate::tui::app::{App, Shot};
-use crate::tui::image_layer::{Placement, placeholder_colour};
-use crate::tui::mode::Mode;
-use crate::tui::motion::CoarseMask;
-use crate::tui::preview::{ColorMode, PreviewImage, half_block_each};
-use crate::tui::selection::Focus;
-use crate::tui::theme;
+use crate::tui::state::app::{App, Shot};
+use crate::tui::state::mode::Mode;
+use crate::tui::state::selection::Focus;
+use crate::tui::terminal::image_layer::{Placement, placeholder_colour};
+use crate::tui::terminal::motion::CoarseMask;
+use crate::tui::view::theme;
 
 /// An image drawn into cells: with half blocks, cell (c, r) shows pixels (c, 2r) over
 /// (c, 2r + 1); with a finer set, each cell is the glyph and two colours that best fit the
@@ -165,7 +165,7 @@ pub fn placements(app: &App, picture: Rect) -> Vec<Placement<'_>> {
 
 /// A shot drawn over `area` in `slot` (see [`placements`]): half blocks, or the cells under a
 /// picture in real pixels: blank, or kitty's Unicode placeholders where the picture is drawn
-/// with them (inside tmux, see `tui::image_layer`), the image id's low byte in the foreground.
+/// with them (inside tmux, see `tui::terminal::image_layer`), the image id's low byte in the foreground.
 fn draw_shot(app: &App, slot: usize, shot: &Shot, area: Rect, buf: &mut Buffer) {
     if shows_pixels(app, area, shot) {
         buf.set_style(area, theme::PICTURE_UNDER);

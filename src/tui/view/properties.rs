@@ -6,11 +6,11 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{List, ListItem, ListState, StatefulWidget, Widget};
 
 use super::pane;
-use crate::tui::app::App;
-use crate::tui::fields::Part;
-use crate::tui::mode::Mode;
-use crate::tui::selection::{self, Focus};
-use crate::tui::theme;
+use crate::tui::state::app::App;
+use crate::tui::state::fields::Part;
+use crate::tui::state::mode::Mode;
+use crate::tui::state::selection::{self, Focus};
+use crate::tui::view::theme;
 
 /// Columns a label takes where there is room, before the space that separates it from its value.
 const LABEL_COLUMNS: usize = 15;

@@ -6,10 +6,10 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{List, ListItem, ListState, StatefulWidget, Widget};
 
 use super::pane;
-use crate::tui::app::App;
-use crate::tui::selection::{Focus, Item};
+use crate::tui::state::app::App;
+use crate::tui::state::selection::{Focus, Item};
 use crate::tui::text::clean;
-use crate::tui::theme;
+use crate::tui::view::theme;
 
 /// The list of items, the selected one highlighted.
 pub struct SceneList<'a>(pub &'a App);

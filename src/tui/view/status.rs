@@ -9,11 +9,11 @@ use ratatui::widgets::{Gauge, Paragraph, Widget};
 
 use super::millis;
 use crate::render::DisplayMode;
-use crate::tui::app::{App, Tone};
-use crate::tui::mode::Mode;
-use crate::tui::selection::Focus;
+use crate::tui::state::app::{App, Tone};
+use crate::tui::state::mode::Mode;
+use crate::tui::state::selection::Focus;
 use crate::tui::text::clean;
-use crate::tui::theme;
+use crate::tui::view::theme;
 
 /// Two lines at the bottom of the screen.
 pub struct StatusBar<'a>(pub &'a App);

@@ -1,11 +1,11 @@
-//! The key map, written once: [`super::input`] looks every key and mouse gesture up in [`KEYS`],
+//! The key map, written once: [`crate::tui::input`] looks every key and mouse gesture up in [`KEYS`],
 //! and the help overlay, the README and `docs/keys.md` show the same table.
 
 use ratatui::crossterm::event::KeyCode;
 
 use super::action::Action;
-use super::mode::AddKind;
 use crate::render::OverlayKind;
+use crate::tui::state::mode::AddKind;
 use Context::*;
 
 /// Where a binding works.

@@ -8,7 +8,7 @@
 //! terminal diff skips them. Pixels that did not change (the background, the still parts) keep
 //! their exact colours, so the exact frame drawn when input pauses repaints only what moved.
 
-use super::preview::{ColorMode, PreviewImage};
+use crate::terminal_image::preview::{ColorMode, PreviewImage};
 
 /// Which pixels of a preview image are drawn in the 256-colour palette, row-major; `None`
 /// means none (an exact frame).

@@ -131,7 +131,7 @@ impl TerminalGuard {
     }
 
     /// Draws one frame inside a synchronized update, then `pictures` (the bytes that draw
-    /// pictures in real pixels over the cells, see `tui::image_layer`) inside the same update.
+    /// pictures in real pixels over the cells, see `tui::terminal::image_layer`) inside the same update.
     pub fn draw(&mut self, render: impl FnOnce(&mut Frame), pictures: &[u8]) -> io::Result<()> {
         execute!(self.terminal.backend_mut(), BeginSynchronizedUpdate)?;
         let mut result = self.terminal.draw(render).map(drop);
@@ -145,7 +145,7 @@ impl TerminalGuard {
 }
 
 /// What takes the editor's pictures off the screen before it leaves (see
-/// `tui::image_layer::ImageLayer::cleanup`); written on every way out, the panic hook included.
+/// `tui::terminal::image_layer::ImageLayer::cleanup`); written on every way out, the panic hook included.
 static CLEAN_UP: Mutex<Vec<u8>> = Mutex::new(Vec::new());
 
 /// Sets what [`restore`] writes before leaving the alternate screen to take pictures off it.

@@ -1,19 +1,19 @@
 //! The editor's state, by owner: the [`Document`] (scene, file, history), the [`ViewState`]
 //! (camera and how the preview draws), the [`Selection`], the current [`Mode`], and what the
-//! background threads delivered. Only [`super::update`] changes it; everything else reads it
+//! background threads delivered. Only [`crate::tui::update`] changes it; everything else reads it
 //! through the accessors.
 
 use std::path::PathBuf;
 
-use super::disk_watch::DiskWatch;
 use super::document::Document;
-use super::export_job::ExportJob;
 use super::mode::Mode;
-use super::motion::{CoarseMask, MotionFilter};
-use super::preview::{ColorMode, PreviewImage};
 use super::selection::{Focus, Item, Selection};
 use super::view_state::ViewState;
 use crate::scene::Scene;
+use crate::terminal_image::preview::{ColorMode, PreviewImage};
+use crate::tui::persistence::disk_watch::DiskWatch;
+use crate::tui::persistence::export_job::ExportJob;
+use crate::tui::terminal::motion::{CoarseMask, MotionFilter};
 use crate::warnings::Warning;
 
 /// Whether a status message reports success or a problem.
@@ -36,7 +36,7 @@ pub struct Shot {
     pub image: PreviewImage,
     /// Render time, milliseconds.
     pub millis: f64,
-    /// Pixels drawn coarse in the current frame (see [`crate::tui::motion`]).
+    /// Pixels drawn coarse in the current frame (see [`crate::tui::terminal::motion`]).
     pub coarse: CoarseMask,
 }
 
@@ -78,24 +78,24 @@ impl Previews {
 /// The whole editor state.
 #[derive(Debug)]
 pub struct App {
-    pub(super) doc: Document,
-    pub(super) view: ViewState,
-    pub(super) selection: Selection,
-    pub(super) mode: Mode,
-    pub(super) status: Option<Status>,
-    pub(super) previews: Previews,
+    pub(in crate::tui) doc: Document,
+    pub(in crate::tui) view: ViewState,
+    pub(in crate::tui) selection: Selection,
+    pub(in crate::tui) mode: Mode,
+    pub(in crate::tui) status: Option<Status>,
+    pub(in crate::tui) previews: Previews,
     /// The PNG export running in the background.
-    pub(super) export: Option<ExportJob>,
+    pub(in crate::tui) export: Option<ExportJob>,
     /// Last mouse position of a drag in progress (column, row).
-    pub(super) drag: Option<(u16, u16)>,
+    pub(in crate::tui) drag: Option<(u16, u16)>,
     /// Set when the event loop should end.
-    pub(super) quit: bool,
+    pub(in crate::tui) quit: bool,
     /// Warnings of the last world built; the status line shows those it did not have before.
-    pub(super) warnings: Vec<Warning>,
+    pub(in crate::tui) warnings: Vec<Warning>,
     /// The scene file and model files, watched for writes by other programs.
-    pub(super) disk: DiskWatch,
+    pub(in crate::tui) disk: DiskWatch,
     /// Set when a tick changed what the screen shows (a reload); the event loop redraws.
-    pub(super) ticked_change: bool,
+    pub(in crate::tui) ticked_change: bool,
 }
 
 impl App {
@@ -127,7 +127,7 @@ impl App {
     }
 
     /// The same editor drawing its preview with `graphics` (half blocks or real pixels).
-    pub fn with_graphics(mut self, graphics: super::graphics::Graphics) -> App {
+    pub fn with_graphics(mut self, graphics: crate::tui::terminal::graphics::Graphics) -> App {
         self.view.set_graphics(graphics);
         self
     }
@@ -221,8 +221,8 @@ impl App {
     /// The file name shown in the status bar.
     pub fn title(&self) -> String {
         match self.doc.path() {
-            Some(p) => super::text::clean(&p.display().to_string()),
-            None => format!("({})", super::text::clean(self.doc.untitled_name())),
+            Some(p) => crate::tui::text::clean(&p.display().to_string()),
+            None => format!("({})", crate::tui::text::clean(self.doc.untitled_name())),
         }
     }
 

@@ -16,8 +16,8 @@ use ratatui::crossterm::terminal::{
 use rustix::event::{PollFd, PollFlags, Timespec, poll};
 
 use super::graphics::{self, Facts, Graphics, GraphicsRequest};
-use super::preview::ColorMode;
 use super::term_input::{Decoder, Reply, TermInput};
+use crate::terminal_image::preview::ColorMode;
 use crate::terminal_image::{kitty, passthrough};
 
 /// The colour questions: XTGETTCAP `RGB` and `Tc` (names hex-encoded), a truecolor background

@@ -3,8 +3,10 @@
 
 use ratatui::style::Color;
 
-use super::theme::TERMINAL_DEFAULT;
 use crate::render::Frame;
+
+/// The terminal's own colour: what a cell shows where the editor sets none.
+pub const TERMINAL_DEFAULT: Color = Color::Reset;
 
 /// How colours reach the terminal.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -85,7 +87,7 @@ pub fn half_block(upper: Option<[u8; 3]>, lower: Option<[u8; 3]>, mode: ColorMod
 }
 
 /// As [`half_block`], with a colour mode for each pixel (a motion frame draws some pixels in the
-/// 256-colour palette, see [`super::motion`]).
+/// 256-colour palette, see the editor's motion frames).
 pub fn half_block_each(
     upper: Option<([u8; 3], ColorMode)>,
     lower: Option<([u8; 3], ColorMode)>,
@@ -120,13 +122,14 @@ pub fn half_block_each(
 /// The six levels of each channel in the xterm 6×6×6 colour cube (indices 16..=231).
 const CUBE: [u8; 6] = [0, 95, 135, 175, 215, 255];
 
-/// Index of the cube level nearest to `v`.
+/// Index of the cube level nearest to `v`, the lower one on a tie (115, 155, 195 and 235 lie
+/// halfway). By the midpoints, not a search: the search was most of a 256-colour frame's time.
 fn cube_level(v: u8) -> usize {
-    CUBE.iter()
-        .enumerate()
-        .min_by_key(|(_, l)| (**l as i32 - v as i32).abs())
-        .map(|(i, _)| i)
-        .unwrap_or(0)
+    match v {
+        0..48 => 0,
+        48..116 => 1,
+        _ => 2 + usize::from(v - 116) / 40,
+    }
 }
 
 fn distance2(a: [u8; 3], b: [u8; 3]) -> i32 {
@@ -147,5 +150,23 @@ pub fn nearest_256(rgb: [u8; 3]) -> u8 {
         232 + step as u8
     } else {
         cube_index as u8
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every byte value gets the level a search of [`CUBE`] gives, the first of equals.
+    #[test]
+    fn cube_level_is_the_nearest_level_for_every_value() {
+        for v in 0..=255u8 {
+            let searched = CUBE
+                .iter()
+                .enumerate()
+                .min_by_key(|(_, l)| (i32::from(**l) - i32::from(v)).abs())
+                .map(|(i, _)| i);
+            assert_eq!(Some(cube_level(v)), searched, "value {v}");
+        }
     }
 }

@@ -9,9 +9,9 @@ use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use super::app::App;
 use super::recovery::{self, RecoveryFile};
 use crate::scene::{Scene, SceneError};
+use crate::tui::state::app::App;
 
 /// Longest time an unsaved change waits before it is in the recovery file. Changes within it
 /// (a drag of the camera) are written together.

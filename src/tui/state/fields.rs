@@ -8,9 +8,9 @@ use std::path::PathBuf;
 use glam::Vec3;
 
 use super::selection::Item;
-use super::text::clean;
 use crate::scene::limits::{self, CountLimits, Limits};
 use crate::scene::{Camera, Light, MaterialSource, Object, Scene, Shape, UpAxis, validate};
+use crate::tui::text::clean;
 
 /// One component of a vector field.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -5,8 +5,7 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::{Position, Rect};
 use ratatui::style::{Color, Modifier, Style};
 
-/// The terminal's own colour: what a cell shows where the editor sets none.
-pub const TERMINAL_DEFAULT: Color = Color::Reset;
+pub use crate::terminal_image::preview::TERMINAL_DEFAULT;
 
 /// Text with no style of its own.
 pub const PLAIN: Style = Style::new();

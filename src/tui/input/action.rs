@@ -1,9 +1,9 @@
 //! Everything the user (or a finished background job) can ask of the editor. Keys become
-//! Actions in [`super::input`]; [`super::update::apply`] carries them out.
+//! Actions in [`crate::tui::input`]; [`crate::tui::update::apply`] carries them out.
 
-use super::mode::AddKind;
-use super::worker::RenderReply;
 use crate::render::{Algorithm, OverlayKind};
+use crate::tui::state::mode::AddKind;
+use crate::tui::worker::RenderReply;
 
 /// One request to change the editor's state.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,17 +1,20 @@
 //! Keys and mouse events become [`Action`]s, as the key table [`keys::KEYS`] says for the current
 //! mode and focused pane. Nothing else happens here.
 
+pub mod action;
+pub mod keys;
+
 use ratatui::crossterm::event::{
     Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
 use ratatui::layout::{Position, Rect};
 
-use super::action::Action;
-use super::app::App;
-use super::keys::{self, Context, Dir, Does, Trigger};
-use super::mode::Mode;
-use super::selection::Focus;
 use crate::render::Algorithm;
+use crate::tui::state::app::App;
+use crate::tui::state::mode::Mode;
+use crate::tui::state::selection::Focus;
+use action::Action;
+use keys::{Context, Dir, Does, Trigger};
 
 /// Degrees per orbit key press.
 const ORBIT_STEP: f32 = 5.0;

@@ -14,7 +14,7 @@
 use ratatui::layout::Rect;
 
 use super::graphics::Graphics;
-use super::preview::PreviewImage;
+use crate::terminal_image::preview::PreviewImage;
 use crate::terminal_image::{CellArea, Protocol, kitty, kitty_placeholder, passthrough};
 
 /// Focus reporting on and off (DEC private mode 1004): the terminal, or tmux, sends `CSI I` when

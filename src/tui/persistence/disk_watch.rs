@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant, SystemTime};
 
 use crate::scene::Shape;
-use crate::tui::document::Document;
+use crate::tui::state::document::Document;
 
 /// How often the files are looked at.
 pub const POLL_EVERY: Duration = Duration::from_millis(400);

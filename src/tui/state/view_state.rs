@@ -6,12 +6,12 @@ use std::time::Instant;
 
 use glam::Vec3;
 
-use super::graphics::Graphics;
 use super::orbit;
-use super::preview::ColorMode;
 use crate::preset_view::{self, PresetView};
 use crate::render::{Algorithm, DisplayMode, OverlayKind, Overlays};
 use crate::scene::{Camera, Scene, validate};
+use crate::terminal_image::preview::ColorMode;
+use crate::tui::terminal::graphics::Graphics;
 
 /// How fast auto-spin turns the view, degrees per second (a turn in 24 s).
 pub const SPIN_DEGREES_PER_SECOND: f32 = 15.0;
