@@ -114,6 +114,9 @@ pub fn run(
         latency: LatencyLog::from_env(),
         pending: None,
         motion_frames: false,
+        awaiting_pixels: false,
+        moving: false,
+        last_picture: pacer::PictureCost::GUESS,
     };
     let mut redraw = true;
     let mut pacer = pacer::Pacer::new();
@@ -127,15 +130,28 @@ pub fn run(
         }
         let areas = view::layout(Rect::new(0, 0, size.width, size.height), &app);
         let now = Instant::now();
-        // Real pixels once keys pause; frames rendered while they arrive are half blocks.
+        // Real pixels once keys pause; frames rendered while they arrive are half blocks. The
+        // picture's size follows the link, as measured when the keys pause (not after: the
+        // picture's own answer must not have it sent again at another size).
         let pixels = !pacer.moving(now);
+        if pixels && std::mem::replace(&mut state.moving, false) {
+            let budget = pacer.link().pixel_budget(state.last_picture);
+            app.view.set_pixel_budget(budget);
+        }
+        state.moving |= !pixels;
         state.request(&app, areas.map(|a| a.picture), pixels);
+        // Cheap frames only over a slow link; while the picture that follows the keys is
+        // rendered, the last motion frame stays: the picture covers it at once.
+        let cheap = pacer.cheap(now, state.awaiting_pixels);
+        let exact_due = pacer.exact_due(now, state.awaiting_pixels);
         // At most one frame in flight: the next waits for the terminal's answer to the last.
-        if (redraw || pacer.needs_exact(now)) && pacer.may_draw(now) {
+        if (redraw || exact_due) && pacer.may_draw(now) {
             let started = Instant::now();
-            let cheap = app.present_previews(pacer.moving(now) && pacer.should_ask());
+            let before = guard.written();
+            let cheap = app.present_previews(cheap);
             let pictures = areas.map_or_else(Vec::new, |a| view::placements(&app, a.picture));
             let picture_bytes = images.frame(&pictures);
+            state.sent_pictures(&pictures, picture_bytes.len());
             if let Err(e) = guard.draw(|f| f.render_widget(&app, f.area()), &picture_bytes) {
                 break Err(TuiError::Terminal(e));
             }
@@ -144,7 +160,7 @@ pub fn run(
                     break Err(TuiError::Terminal(e));
                 }
                 pacer.carrying(picture_bytes.len());
-                pacer.asked(now, cheap);
+                pacer.asked(now, cheap, guard.written() - before);
             } else {
                 pacer.drew(cheap);
             }
@@ -288,14 +304,15 @@ fn load(path: Option<&Path>, up: crate::scene::UpAxis) -> Result<App, TuiError> 
 }
 
 /// The render jobs the app needs for a picture area of `picture`: in real pixels when `pixels`
-/// and the editor draws with a graphics protocol and no dialog covers the preview, else at the
-/// size its glyph set samples (see [`graphics::Graphics::cells_size`]).
+/// and the editor draws with a graphics protocol and no dialog covers the preview (within the
+/// view's pixel budget), else at the size its glyph set samples (see
+/// [`graphics::Graphics::cells_size`]).
 pub fn wanted(app: &App, picture: Rect, pixels: bool) -> Option<Wanted> {
     let pixels = pixels && matches!(app.mode, mode::Mode::Normal | mode::Mode::Edit(_));
     let job = |slot, algorithm, area: Rect| {
         let graphics = app.view.graphics();
         let (width, height) = pixels
-            .then(|| graphics.pixel_size(area.width, area.height))
+            .then(|| app.view.pixel_size(area.width, area.height))
             .flatten()
             .unwrap_or_else(|| graphics.cells_size(area.width, area.height));
         (area.width > 0 && area.height > 0).then_some(Job {
@@ -346,6 +363,12 @@ struct Loop {
     /// Whether the last request was for half blocks where the editor draws real pixels, since
     /// keys were arriving: rendered again in pixels once they pause.
     motion_frames: bool,
+    /// Whether the last request was for pictures in real pixels that have not arrived yet.
+    awaiting_pixels: bool,
+    /// Whether keys were arriving when the loop last looked.
+    moving: bool,
+    /// What the last pictures sent cost: sizes the next over a slow link.
+    last_picture: pacer::PictureCost,
 }
 
 /// A request caused by a key, waiting to be drawn.
@@ -369,6 +392,9 @@ impl Loop {
         if self.scene.0 != generation {
             self.scene = (generation, Arc::new(app.doc.scene().clone()));
         }
+        self.awaiting_pixels = app.view.graphics().protocol.is_some()
+            && pixels
+            && matches!(app.mode, mode::Mode::Normal | mode::Mode::Edit(_));
         self.sent = Some(wanted.clone());
         let id = self.worker.request(
             wanted,
@@ -383,8 +409,28 @@ impl Loop {
         });
     }
 
+    /// Notes what `pictures` cost when `bytes` drew them (nothing when no bytes were sent:
+    /// they were on screen already).
+    fn sent_pictures(&mut self, pictures: &[image_layer::Placement], bytes: usize) {
+        let pixels: usize = pictures.iter().map(|p| p.image.pixels.len()).sum();
+        if bytes > 0 && pixels > 0 {
+            self.last_picture = pacer::PictureCost {
+                pixels: pixels as u64,
+                bytes: bytes as u64,
+            };
+        }
+    }
+
     /// Notes the render time when the awaited request's last frame arrives.
     fn arrived(&mut self, reply: &RenderReply) {
+        if reply.id() == self.latest
+            && matches!(
+                reply,
+                RenderReply::Shot { last: true, .. } | RenderReply::Failed { .. }
+            )
+        {
+            self.awaiting_pixels = false;
+        }
         if let (
             Some(p),
             RenderReply::Shot {

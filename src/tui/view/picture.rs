@@ -7,6 +7,7 @@ use ratatui::layout::{Alignment, Rect};
 use ratatui::text::Line;
 use ratatui::widgets::{Paragraph, Widget};
 
+use super::pen::Pen;
 use super::{compare_panes, millis, pane};
 use crate::terminal_image::GlyphSet;
 use crate::terminal_image::glyph_cells::{self, CellChooser};
@@ -14,7 +15,7 @@ use crate::tui::app::{App, Shot};
 use crate::tui::image_layer::Placement;
 use crate::tui::mode::Mode;
 use crate::tui::motion::CoarseMask;
-use crate::tui::preview::{ColorMode, PreviewImage, half_block_each};
+use crate::tui::preview::{ColorMode, PreviewImage, half_block_each, halves_match};
 use crate::tui::selection::Focus;
 use crate::tui::theme;
 
@@ -41,7 +42,8 @@ impl Widget for Picture<'_> {
 
 impl Picture<'_> {
     /// Draws the image with `set`, resampled to the grid the encoder samples; a cell with any
-    /// coarse pixel under it is drawn in the 256-colour palette.
+    /// coarse pixel under it is drawn in the 256-colour palette. Colours close to the pen's are
+    /// drawn with the pen's (see [`Pen`]).
     fn glyphs(&self, set: GlyphSet, area: Rect, buf: &mut Buffer) {
         let (cols, rows) = (u32::from(area.width), u32::from(area.height));
         if cols == 0 || rows == 0 || self.image.pixels.is_empty() {
@@ -62,8 +64,13 @@ impl Picture<'_> {
             })
         };
         for row in 0..rows {
+            let mut pen = Pen::default();
             for col in 0..cols {
-                let cell = chooser.choose(&image, col, row);
+                let mut cell = chooser.choose(&image, col, row);
+                cell.bg = pen.bg(cell.bg);
+                if cell.glyph != ' ' {
+                    cell.fg = pen.fg(cell.fg);
+                }
                 let mode = if coarse(col, row) {
                     ColorMode::Ansi256
                 } else {
@@ -86,7 +93,8 @@ impl Picture<'_> {
 
     /// Draws the image at one pixel per column and two per row; an image of another size (one
     /// rendered for real pixels, shown while a dialog is open, or with square pixels on cells
-    /// that are not 1:2) is sampled to that grid.
+    /// that are not 1:2) is sampled to that grid. Colours close to the pen's are drawn with the
+    /// pen's (see [`Pen`]).
     fn half_blocks(&self, area: Rect, buf: &mut Buffer) {
         let (grid_w, grid_h) = (u32::from(area.width), 2 * u32::from(area.height));
         let scaled = self.image.width > grid_w || self.image.height > grid_h;
@@ -98,6 +106,7 @@ impl Picture<'_> {
             false => v,
         };
         for row in 0..area.height {
+            let mut pen = Pen::default();
             for col in 0..area.width {
                 let (x, y) = (col as u32, 2 * row as u32);
                 let pixel = |x: u32, y: u32| {
@@ -115,7 +124,22 @@ impl Picture<'_> {
                         },
                     ))
                 };
-                let cell = half_block_each(pixel(x, y), pixel(x, y + 1));
+                let cell = match (pixel(x, y), pixel(x, y + 1)) {
+                    // A cell of one colour shows the background only.
+                    (Some(u), Some(l)) if halves_match(u.0, l.0) => {
+                        let c = (pen.bg(u.0), u.1);
+                        half_block_each(Some(c), Some(c))
+                    }
+                    (Some(u), l) => {
+                        let u = (pen.fg(u.0), u.1);
+                        let l = l.map(|l| (pen.bg(l.0), l.1));
+                        if l.is_none() {
+                            pen.default_bg();
+                        }
+                        half_block_each(Some(u), l)
+                    }
+                    (None, l) => half_block_each(None, l),
+                };
                 if let Some(c) = buf.cell_mut((area.x + col, area.y + row)) {
                     c.set_symbol(cell.symbol).set_fg(cell.fg).set_bg(cell.bg);
                 }
@@ -128,7 +152,7 @@ impl Picture<'_> {
 /// graphics protocol, the image has the size rendered for that area (frames rendered in half-block
 /// size while keys arrive stay half blocks), and no dialog or help is open over the preview.
 fn shows_pixels(app: &App, area: Rect, shot: &Shot) -> bool {
-    let size = app.view.graphics().pixel_size(area.width, area.height);
+    let size = app.view.pixel_size(area.width, area.height);
     size == Some((shot.image.width, shot.image.height))
         && matches!(app.mode, Mode::Normal | Mode::Edit(_))
 }
