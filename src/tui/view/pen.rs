@@ -29,6 +29,18 @@ impl Pen {
         reuse(&mut self.bg, color)
     }
 
+    /// The background colour for a cell of one colour that stands for two pixels, `a` and `b`
+    /// (within tolerance of each other): the pen's when close to both, else `a`.
+    pub fn bg_of_both(&mut self, a: [u8; 3], b: [u8; 3]) -> [u8; 3] {
+        match self.bg {
+            Some(held) if halves_match(held, a) && halves_match(held, b) => held,
+            _ => {
+                self.bg = Some(a);
+                a
+            }
+        }
+    }
+
     /// Notes a cell drawn on the terminal's default background.
     pub fn default_bg(&mut self) {
         self.bg = None;
@@ -66,5 +78,8 @@ mod tests {
         assert_eq!(pen.fg([101, 50, 50]), [101, 50, 50]);
         pen.default_bg();
         assert_eq!(pen.bg([111, 50, 50]), [111, 50, 50]);
+        // A cell of one colour reuses the pen only when it is close to both its pixels.
+        assert_eq!(pen.bg_of_both([114, 50, 50], [113, 50, 50]), [111, 50, 50]);
+        assert_eq!(pen.bg_of_both([114, 50, 50], [117, 50, 50]), [114, 50, 50]);
     }
 }

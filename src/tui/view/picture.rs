@@ -15,7 +15,7 @@ use crate::tui::app::{App, Shot};
 use crate::tui::image_layer::Placement;
 use crate::tui::mode::Mode;
 use crate::tui::motion::CoarseMask;
-use crate::tui::preview::{ColorMode, PreviewImage, half_block_each, halves_match};
+use crate::tui::preview::{ColorMode, HalfBlock, PreviewImage, half_block_each, halves_match};
 use crate::tui::selection::Focus;
 use crate::tui::theme;
 
@@ -127,16 +127,18 @@ impl Picture<'_> {
                 let cell = match (pixel(x, y), pixel(x, y + 1)) {
                     // A cell of one colour shows the background only.
                     (Some(u), Some(l)) if halves_match(u.0, l.0) => {
-                        let c = (pen.bg(u.0), u.1);
+                        let c = (pen.bg_of_both(u.0, l.0), u.1);
                         half_block_each(Some(c), Some(c))
                     }
-                    (Some(u), l) => {
-                        let u = (pen.fg(u.0), u.1);
-                        let l = l.map(|l| (pen.bg(l.0), l.1));
-                        if l.is_none() {
-                            pen.default_bg();
-                        }
-                        half_block_each(Some(u), l)
+                    // Two colours stay two, whatever the pen makes of them.
+                    (Some(u), Some(l)) => HalfBlock {
+                        symbol: "▀",
+                        fg: u.1.color(pen.fg(u.0)),
+                        bg: l.1.color(pen.bg(l.0)),
+                    },
+                    (Some(u), None) => {
+                        pen.default_bg();
+                        half_block_each(Some((pen.fg(u.0), u.1)), None)
                     }
                     (None, l) => half_block_each(None, l),
                 };
