@@ -56,3 +56,22 @@ fn a_burst_of_orbit_keys_over_a_slow_link_keeps_one_frame_in_flight_and_ends_exa
     assert_eq!(link.shown(), shown, "the editor wrote while idle");
     assert_eq!(link.quit(), Some(0));
 }
+
+#[test]
+fn over_a_fast_link_keys_get_exact_truecolor_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    // 50 MB/s: a frame crosses in well under a millisecond.
+    let mut link = SlowLink::start(dir.path(), &[], 120, 40, 50_000_000.0);
+    let burst = link.orbit_burst(10, Duration::from_millis(60));
+    assert!(
+        burst
+            .iter()
+            .any(|f| f.bytes.windows(5).any(|w| w == b"48;2;")),
+        "no frame drew the moving preview"
+    );
+    assert!(
+        burst.iter().all(|f| !f.has_palette_colours()),
+        "a motion frame fell to the 256-colour palette on a fast link"
+    );
+    assert_eq!(link.quit(), Some(0));
+}

@@ -59,6 +59,27 @@ fn pictures_are_paced_and_keys_get_half_blocks_until_they_pause() {
         1,
         "the last frame is the exact picture"
     );
+    // Send no frame that the next covers at once: no exact half-block frame before the picture.
+    for frame in moving {
+        let cells = frame.bytes.windows(3).any(|w| w == "▀".as_bytes());
+        assert!(
+            !cells || frame.has_palette_colours(),
+            "an exact half-block frame of {} bytes went out under the picture",
+            frame.bytes.len()
+        );
+    }
+    // The picture is sized to the link: the first screen's went out at full size, before the
+    // link was measured; the one after the keys fits about 0.2 s of the link's 60 kB/s.
+    let first_picture = link.frames[..before]
+        .iter()
+        .find(|f| pictures(&f.bytes) == 1)
+        .map(|f| f.bytes.len())
+        .unwrap();
+    assert!(
+        last.bytes.len() < first_picture / 2 && last.bytes.len() < 30_000,
+        "the picture after the keys has {} bytes, the first {first_picture}",
+        last.bytes.len()
+    );
     let shown = link.shown();
     link.run_for(Duration::from_millis(1500));
     assert_eq!(link.shown(), shown, "the editor wrote while idle");

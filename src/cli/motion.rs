@@ -150,7 +150,7 @@ pub fn play(
             if interactive && pacer.should_ask() {
                 screen.write(pacer::QUERY)?;
                 pacer.carrying(bytes.len());
-                pacer.asked(now, false);
+                pacer.asked(now, false, bytes.len() as u64);
             } else {
                 pacer.drew(false);
             }

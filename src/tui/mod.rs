@@ -131,6 +131,9 @@ impl Editor {
             latency: LatencyLog::from_env(),
             pending: None,
             motion_frames: false,
+            awaiting_pixels: false,
+            moving: false,
+            last_picture: pacer::PictureCost::GUESS,
         };
         Ok(Editor {
             app,
@@ -155,13 +158,24 @@ impl Editor {
             }
             let areas = view::layout(Rect::new(0, 0, size.width, size.height), &self.app);
             let now = Instant::now();
-            // Real pixels once keys pause; frames rendered while they arrive are half blocks.
+            // Real pixels once keys pause; frames rendered while they arrive are half blocks. The
+            // picture's size follows the link, as measured when the keys pause (not after: the
+            // picture's own answer must not have it sent again at another size).
             let pixels = !self.pacer.moving(now);
+            if pixels && std::mem::replace(&mut self.state.moving, false) {
+                let budget = self.pacer.link().pixel_budget(self.state.last_picture);
+                self.app.view.set_pixel_budget(budget);
+            }
+            self.state.moving |= !pixels;
             self.state
                 .request(&self.app, areas.map(|a| a.picture), pixels);
+            // Cheap frames only over a slow link; while the picture that follows the keys is
+            // rendered, the last motion frame stays: the picture covers it at once.
+            let cheap = self.pacer.cheap(now, self.state.awaiting_pixels);
+            let exact_due = self.pacer.exact_due(now, self.state.awaiting_pixels);
             // At most one frame in flight: the next waits for the terminal's answer to the last.
-            if (self.redraw || self.pacer.needs_exact(now)) && self.pacer.may_draw(now) {
-                self.draw(now, areas)?;
+            if (self.redraw || exact_due) && self.pacer.may_draw(now) {
+                self.draw(now, cheap, areas)?;
             }
             let first = self.next_event()?;
             self.redraw |= first.is_none() && self.app.is_exporting();
@@ -182,15 +196,21 @@ impl Editor {
         }
     }
 
-    /// Draws the cells and the pictures over them; where the pacer asks, then asks the
-    /// terminal to answer once it has the frame. `now` is when this turn of the loop began.
-    fn draw(&mut self, now: Instant, areas: Option<view::Areas>) -> Result<(), TuiError> {
+    /// Draws the cells (`cheap` ones when the pacer wants them) and the pictures over them;
+    /// where the pacer asks, then asks the terminal to answer once it has the frame. `now` is
+    /// when this turn of the loop began.
+    fn draw(
+        &mut self,
+        now: Instant,
+        cheap: bool,
+        areas: Option<view::Areas>,
+    ) -> Result<(), TuiError> {
         let started = Instant::now();
-        let cheap = self
-            .app
-            .present_previews(self.pacer.moving(now) && self.pacer.should_ask());
+        let before = self.guard.written();
+        let cheap = self.app.present_previews(cheap);
         let pictures = areas.map_or_else(Vec::new, |a| view::placements(&self.app, a.picture));
         let picture_bytes = self.images.frame(&pictures);
+        self.state.sent_pictures(&pictures, picture_bytes.len());
         let app = &self.app;
         self.guard
             .draw(|f| f.render_widget(app, f.area()), &picture_bytes)
@@ -198,7 +218,7 @@ impl Editor {
         if self.pacer.should_ask() {
             self.guard.ask(pacer::QUERY).map_err(TuiError::Terminal)?;
             self.pacer.carrying(picture_bytes.len());
-            self.pacer.asked(now, cheap);
+            self.pacer.asked(now, cheap, self.guard.written() - before);
         } else {
             self.pacer.drew(cheap);
         }
@@ -366,14 +386,15 @@ fn load(path: Option<&Path>, up: crate::scene::UpAxis) -> Result<App, TuiError> 
 }
 
 /// The render jobs the app needs for a picture area of `picture`: in real pixels when `pixels`
-/// and the editor draws with a graphics protocol and no dialog covers the preview, else at the
-/// size its glyph set samples (see [`graphics::Graphics::cells_size`]).
+/// and the editor draws with a graphics protocol and no dialog covers the preview (within the
+/// view's pixel budget), else at the size its glyph set samples (see
+/// [`graphics::Graphics::cells_size`]).
 pub fn wanted(app: &App, picture: Rect, pixels: bool) -> Option<Wanted> {
     let pixels = pixels && matches!(app.mode, mode::Mode::Normal | mode::Mode::Edit(_));
     let job = |slot, algorithm, area: Rect| {
         let graphics = app.view.graphics();
         let (width, height) = pixels
-            .then(|| graphics.pixel_size(area.width, area.height))
+            .then(|| app.view.pixel_size(area.width, area.height))
             .flatten()
             .unwrap_or_else(|| graphics.cells_size(area.width, area.height));
         (area.width > 0 && area.height > 0).then_some(Job {
@@ -424,6 +445,12 @@ struct Loop {
     /// Whether the last request was for half blocks where the editor draws real pixels, since
     /// keys were arriving: rendered again in pixels once they pause.
     motion_frames: bool,
+    /// Whether the last request was for pictures in real pixels that have not arrived yet.
+    awaiting_pixels: bool,
+    /// Whether keys were arriving when the loop last looked.
+    moving: bool,
+    /// What the last pictures sent cost: sizes the next over a slow link.
+    last_picture: pacer::PictureCost,
 }
 
 /// A request caused by a key, waiting to be drawn.
@@ -447,6 +474,9 @@ impl Loop {
         if self.scene.0 != generation {
             self.scene = (generation, Arc::new(app.doc.scene().clone()));
         }
+        self.awaiting_pixels = app.view.graphics().protocol.is_some()
+            && pixels
+            && matches!(app.mode, mode::Mode::Normal | mode::Mode::Edit(_));
         self.sent = Some(wanted.clone());
         let id = self.worker.request(
             wanted,
@@ -461,8 +491,28 @@ impl Loop {
         });
     }
 
+    /// Notes what `pictures` cost when `bytes` drew them (nothing when no bytes were sent:
+    /// they were on screen already).
+    fn sent_pictures(&mut self, pictures: &[image_layer::Placement], bytes: usize) {
+        let pixels: usize = pictures.iter().map(|p| p.image.pixels.len()).sum();
+        if bytes > 0 && pixels > 0 {
+            self.last_picture = pacer::PictureCost {
+                pixels: pixels as u64,
+                bytes: bytes as u64,
+            };
+        }
+    }
+
     /// Notes the render time when the awaited request's last frame arrives.
     fn arrived(&mut self, reply: &RenderReply) {
+        if reply.id() == self.latest
+            && matches!(
+                reply,
+                RenderReply::Shot { last: true, .. } | RenderReply::Failed { .. }
+            )
+        {
+            self.awaiting_pixels = false;
+        }
         if let (
             Some(p),
             RenderReply::Shot {

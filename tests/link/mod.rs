@@ -130,6 +130,20 @@ impl SlowLink {
         false
     }
 
+    /// Lets the first screen settle, types `keys` orbit keys `gap` apart, lets the editor go
+    /// quiet again, and gives the frames drawn since the first screen.
+    pub fn orbit_burst(&mut self, keys: usize, gap: Duration) -> Vec<Frame> {
+        let (quiet, limit) = (Duration::from_millis(800), Duration::from_secs(60));
+        assert!(self.run_until_quiet(quiet, limit), "no first screen");
+        let before = self.frames.len();
+        for _ in 0..keys {
+            self.keys(b"]");
+            self.run_for(gap);
+        }
+        assert!(self.run_until_quiet(quiet, limit), "no quiet after keys");
+        self.frames[before..].to_vec()
+    }
+
     /// Bytes that reached the terminal so far.
     pub fn shown(&self) -> usize {
         self.frames.iter().map(|f| f.bytes.len()).sum::<usize>() + self.partial.len()

@@ -33,6 +33,9 @@ pub struct ViewState {
     plain: bool,
     /// Half blocks, or real pixels over a graphics protocol.
     graphics: Graphics,
+    /// Most pixels a picture in real pixels has: [`crate::tui::terminal::graphics::PIXEL_BUDGET`], or less
+    /// over a slow link (see [`super::pixel_budget`]).
+    pixel_budget: u64,
     /// How the preview shows surfaces.
     mode: DisplayMode,
     /// The overlays drawn over the preview (their selection is the editor's, set per render).
@@ -59,6 +62,7 @@ impl ViewState {
             show_timings: true,
             plain: false,
             graphics: Graphics::default(),
+            pixel_budget: crate::tui::terminal::graphics::PIXEL_BUDGET,
             mode: DisplayMode::Shaded,
             overlays: Overlays::default(),
             preset: None,
@@ -273,5 +277,17 @@ impl ViewState {
     /// Notes that the terminal reported the pane `focused` or not.
     pub fn set_terminal_focused(&mut self, focused: bool) {
         self.terminal_focused = focused;
+    }
+
+    /// Limits pictures in real pixels to `pixels` (at most [`crate::tui::terminal::graphics::PIXEL_BUDGET`]).
+    pub fn set_pixel_budget(&mut self, pixels: u64) {
+        self.pixel_budget = pixels;
+    }
+
+    /// The image size to render for a picture of `cols`×`rows` cells in real pixels, within
+    /// the pixel budget; `None` without a graphics protocol.
+    pub fn pixel_size(&self, cols: u16, rows: u16) -> Option<(u32, u32)> {
+        self.graphics
+            .pixel_size_within(cols, rows, self.pixel_budget)
     }
 }

@@ -123,12 +123,18 @@ impl Graphics {
     /// image's height is a whole number of six-pixel bands, so it never spills below its cells.
     /// `None` for half blocks.
     pub fn pixel_size(&self, cols: u16, rows: u16) -> Option<(u32, u32)> {
+        self.pixel_size_within(cols, rows, PIXEL_BUDGET)
+    }
+
+    /// As [`Graphics::pixel_size`], with at most `budget` pixels (a slow link's share, see
+    /// `tui::pacer::Link::picture_bytes`) instead of [`PIXEL_BUDGET`].
+    pub fn pixel_size_within(&self, cols: u16, rows: u16, budget: u64) -> Option<(u32, u32)> {
         let protocol = self.protocol?;
         let area = CellArea {
             cols: u32::from(cols.max(1)),
             rows: u32::from(rows.max(1)),
         };
-        let (w, h) = area.pixels_within(self.cell, PIXEL_BUDGET);
+        let (w, h) = area.pixels_within(self.cell, budget.min(PIXEL_BUDGET));
         let h = match protocol {
             Protocol::Sixel if h >= 6 => h - h % 6,
             _ => h,

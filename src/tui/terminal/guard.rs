@@ -71,16 +71,21 @@ pub fn write_leave(out: &mut impl Write) -> io::Result<()> {
 }
 
 /// Where frames go: the terminal, until the guard lets go of it; from then on writes are
-/// dropped.
+/// dropped. Counts the bytes written, for the pacer's estimate of the link.
 pub struct Output {
     stdout: Stdout,
     released: Rc<Cell<bool>>,
+    written: Rc<Cell<u64>>,
 }
 
 impl Write for Output {
     fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
         match self.released.get() {
-            false => self.stdout.write(buf),
+            false => {
+                let n = self.stdout.write(buf)?;
+                self.written.set(self.written.get() + n as u64);
+                Ok(n)
+            }
             true => Ok(buf.len()),
         }
     }
@@ -98,6 +103,8 @@ pub struct TerminalGuard {
     pub terminal: Terminal<CompactBackend<Output>>,
     /// Set on drop: the terminal's [`Output`] stops writing.
     released: Rc<Cell<bool>>,
+    /// Bytes written to the terminal so far.
+    written: Rc<Cell<u64>>,
 }
 
 impl TerminalGuard {
@@ -115,12 +122,18 @@ impl TerminalGuard {
             return Err(e);
         }
         let released = Rc::new(Cell::new(false));
+        let written = Rc::new(Cell::new(0));
         let backend = CompactBackend::new(Output {
             stdout: io::stdout(),
             released: released.clone(),
+            written: written.clone(),
         });
         let terminal = Terminal::new(backend).inspect_err(|_| restore())?;
-        Ok(TerminalGuard { terminal, released })
+        Ok(TerminalGuard {
+            terminal,
+            released,
+            written,
+        })
     }
 
     /// Writes a query to the terminal (its answer comes back as input) and flushes it.
@@ -128,6 +141,11 @@ impl TerminalGuard {
         let out = self.terminal.backend_mut();
         out.write_all(query)?;
         out.flush()
+    }
+
+    /// Bytes written to the terminal since the editor started.
+    pub fn written(&self) -> u64 {
+        self.written.get()
     }
 
     /// Draws one frame inside a synchronized update, then `pictures` (the bytes that draw

@@ -3,6 +3,7 @@
 
 mod dialogs;
 mod help;
+mod pen;
 mod picture;
 mod properties;
 mod scene_list;

@@ -8,9 +8,12 @@ use ratatui::style::Color;
 use ratatui::text::Line;
 use ratatui::widgets::{Paragraph, Widget};
 
+use super::pen::Pen;
 use super::{compare_panes, millis, pane};
 use crate::terminal_image::glyph_cells::{self, CellChooser};
-use crate::terminal_image::preview::{ColorMode, PreviewImage, half_block_each};
+use crate::terminal_image::preview::{
+    ColorMode, HalfBlock, PreviewImage, half_block_each, halves_match,
+};
 use crate::terminal_image::{GlyphSet, kitty_placeholder};
 use crate::tui::state::app::{App, Shot};
 use crate::tui::state::mode::Mode;
@@ -42,7 +45,8 @@ impl Widget for Picture<'_> {
 
 impl Picture<'_> {
     /// Draws the image with `set`, resampled to the grid the encoder samples; a cell with any
-    /// coarse pixel under it is drawn in the 256-colour palette.
+    /// coarse pixel under it is drawn in the 256-colour palette. Colours close to the pen's are
+    /// drawn with the pen's (see [`Pen`]).
     fn glyphs(&self, set: GlyphSet, area: Rect, buf: &mut Buffer) {
         let (cols, rows) = (u32::from(area.width), u32::from(area.height));
         if cols == 0 || rows == 0 || self.image.pixels.is_empty() {
@@ -63,8 +67,13 @@ impl Picture<'_> {
             })
         };
         for row in 0..rows {
+            let mut pen = Pen::default();
             for col in 0..cols {
-                let cell = chooser.choose(&image, col, row);
+                let mut cell = chooser.choose(&image, col, row);
+                cell.bg = pen.bg(cell.bg);
+                if cell.glyph != ' ' {
+                    cell.fg = pen.fg(cell.fg);
+                }
                 let mode = if coarse(col, row) {
                     ColorMode::Ansi256
                 } else {
@@ -87,7 +96,8 @@ impl Picture<'_> {
 
     /// Draws the image at one pixel per column and two per row; an image of another size (one
     /// rendered for real pixels, shown while a dialog is open, or with square pixels on cells
-    /// that are not 1:2) is sampled to that grid.
+    /// that are not 1:2) is sampled to that grid. Colours close to the pen's are drawn with the
+    /// pen's (see [`Pen`]).
     fn half_blocks(&self, area: Rect, buf: &mut Buffer) {
         let (grid_w, grid_h) = (u32::from(area.width), 2 * u32::from(area.height));
         let scaled = self.image.width > grid_w || self.image.height > grid_h;
@@ -99,6 +109,7 @@ impl Picture<'_> {
             false => v,
         };
         for row in 0..area.height {
+            let mut pen = Pen::default();
             for col in 0..area.width {
                 let (x, y) = (col as u32, 2 * row as u32);
                 let pixel = |x: u32, y: u32| {
@@ -116,7 +127,24 @@ impl Picture<'_> {
                         },
                     ))
                 };
-                let cell = half_block_each(pixel(x, y), pixel(x, y + 1));
+                let cell = match (pixel(x, y), pixel(x, y + 1)) {
+                    // A cell of one colour shows the background only.
+                    (Some(u), Some(l)) if halves_match(u.0, l.0) => {
+                        let c = (pen.bg_of_both(u.0, l.0), u.1);
+                        half_block_each(Some(c), Some(c))
+                    }
+                    // Two colours stay two, whatever the pen makes of them.
+                    (Some(u), Some(l)) => HalfBlock {
+                        symbol: "▀",
+                        fg: u.1.color(pen.fg(u.0)),
+                        bg: l.1.color(pen.bg(l.0)),
+                    },
+                    (Some(u), None) => {
+                        pen.default_bg();
+                        half_block_each(Some((pen.fg(u.0), u.1)), None)
+                    }
+                    (None, l) => half_block_each(None, l),
+                };
                 if let Some(c) = buf.cell_mut((area.x + col, area.y + row)) {
                     c.set_symbol(cell.symbol).set_fg(cell.fg).set_bg(cell.bg);
                 }
@@ -130,7 +158,7 @@ impl Picture<'_> {
 /// size while keys arrive stay half blocks), no dialog or help is open over the preview, and the
 /// pane has the focus where pictures leave with it (see `Graphics::hides_unfocused`).
 fn shows_pixels(app: &App, area: Rect, shot: &Shot) -> bool {
-    let size = app.view.graphics().pixel_size(area.width, area.height);
+    let size = app.view.pixel_size(area.width, area.height);
     size == Some((shot.image.width, shot.image.height))
         && matches!(app.mode, Mode::Normal | Mode::Edit(_))
         && app.view.pixels_while_focused()
