@@ -45,10 +45,13 @@ pub const BYTES_PER_OBJECT: u64 = 2_000;
 pub const BYTES_PER_INSTANCE: u64 = 1_000;
 
 /// Bytes each triangle an instance places costs while the Z-buffer draws it: the placed copy of
-/// the instance's mesh (positions, normals, distinct positions; about 100) and the screen
-/// triangle, corners and binned copies when every triangle survives culling (about 320). The
-/// ray tracer places nothing: it moves rays into the shared mesh's space.
-pub const BYTES_PER_PLACED_TRIANGLE: u64 = 420;
+/// the instance's mesh (positions, normals, distinct positions and its object) and the screen
+/// triangle, corners and binned copies when every triangle survives culling. Measured 487 on
+/// the node tree of 262,143 instances of a 34-triangle fan (Gouraud at 64×48: 4.72 GB, Phong
+/// 4.62 GB). The ray tracer places nothing (it moves rays into the shared mesh's space: 0.35 GB
+/// there), but the budget holds whichever algorithm draws the world, so placed triangles are
+/// counted for all.
+pub const BYTES_PER_PLACED_TRIANGLE: u64 = 500;
 
 /// Bytes one pixel of a still image costs while it renders and is written: the frame's linear
 /// RGB and alpha (16) and the encoder's copy. Measured 41 for OpenEXR with alpha (the worst),
@@ -282,13 +285,23 @@ mod tests {
             ..Estimate::default()
         };
         assert!(baked.bytes() > MEMORY_BOUND, "{}", baked.bytes());
+        // Shared, it stores 34 triangles, but the Z-buffer places all 8.9M: still past it.
         let tree = Estimate {
             triangles: 34,
             instances: 262_143,
             placed_triangles: 262_143 * 34,
             ..Estimate::default()
         };
-        assert!(tree.bytes() < MEMORY_BOUND, "{}", tree.bytes());
+        assert!(tree.bytes() > MEMORY_BOUND, "{}", tree.bytes());
+        assert!(tree.bytes() < baked.bytes());
+        // Two levels fewer, a quarter of it, keeps well within.
+        let smaller = Estimate {
+            triangles: 34,
+            instances: 65_535,
+            placed_triangles: 65_535 * 34,
+            ..Estimate::default()
+        };
+        assert!(smaller.bytes() < MEMORY_BOUND / 3, "{}", smaller.bytes());
         let one = Estimate {
             triangles: 12,
             objects: 1,

@@ -13,7 +13,7 @@ use super::appearance::{ImageCache, PartAppearance, part_appearance};
 use super::buffers::load_buffers;
 use super::error::GltfError;
 use super::material::phong_from_pbr;
-use super::primitive::{PrimitiveRead, read_primitive};
+use super::primitive::{PrimitiveRead, placed_geometry, read_primitive};
 use super::warning::ImportWarning;
 use crate::input_file::{MAX_MODEL_BYTES, read_bounded};
 use crate::memory_budget::Estimate;
@@ -43,6 +43,27 @@ pub struct GltfPart {
     /// Its base colour texture (with the geometry's corner UVs, when both could be read) and
     /// alpha mode.
     pub appearance: Appearance,
+}
+
+impl GltfPart {
+    /// The part as it is drawn: itself when it is drawn once; else one part per instance, its
+    /// geometry placed in the model's space as it was read before instancing, with the
+    /// instance's label.
+    pub fn expanded(&self) -> Vec<GltfPart> {
+        if self.instances.is_empty() {
+            return vec![self.clone()];
+        }
+        self.instances
+            .iter()
+            .map(|instance| GltfPart {
+                label: instance.label.clone(),
+                geometry: placed_geometry(&self.geometry, instance.transform),
+                instances: Vec::new(),
+                material: self.material,
+                appearance: self.appearance.clone(),
+            })
+            .collect()
+    }
 }
 
 /// One placement of a shared primitive.
