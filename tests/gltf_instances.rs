@@ -6,7 +6,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use rastray::render::{Algorithm, RenderOptions};
+use rastray::render::{Algorithm, DisplayMode, RenderOptions};
 use rastray::world::{MeshFileCache, World};
 
 /// The nodes: (translation, rotation quaternion xyzw, scale). A floor under four cubes, one
@@ -92,12 +92,19 @@ fn cubes_glb(shared: bool) -> Vec<u8> {
     common::glb(&document, bin)
 }
 
-/// Writes the cubes GLB (`shared` or baked) into the test binary's scratch folder.
+/// The cubes GLB (`shared` or baked), written once into the test binary's scratch folder (the
+/// tests run at once, and must not read a file another is rewriting).
 fn write_cubes(shared: bool) -> PathBuf {
-    let name = if shared { "shared.glb" } else { "baked.glb" };
-    let path = common::scratch().join(name);
-    std::fs::write(&path, cubes_glb(shared)).unwrap();
-    path
+    static WRITTEN: [std::sync::OnceLock<PathBuf>; 2] =
+        [std::sync::OnceLock::new(), std::sync::OnceLock::new()];
+    WRITTEN[shared as usize]
+        .get_or_init(|| {
+            let name = if shared { "shared.glb" } else { "baked.glb" };
+            let path = common::scratch().join(name);
+            std::fs::write(&path, cubes_glb(shared)).unwrap();
+            path
+        })
+        .clone()
 }
 
 /// The cubes seen from above and aside, lit by a light over them (its shadows fall on the floor
@@ -114,9 +121,10 @@ fn scene_of(model: &Path) -> rastray::Scene {
     ))
 }
 
-/// The image of `scene` by `algorithm` at 160×120, 8-bit RGB.
-fn image(scene: &rastray::Scene, algorithm: Algorithm) -> Vec<u8> {
-    let options = RenderOptions::new(algorithm, 160, 120);
+/// The image of `scene` by `algorithm` in display mode `mode` at 160×120, 8-bit RGB.
+fn image(scene: &rastray::Scene, algorithm: Algorithm, mode: DisplayMode) -> Vec<u8> {
+    let mut options = RenderOptions::new(algorithm, 160, 120);
+    options.mode = mode;
     let (frame, _) = common::render(&common::world(scene), &scene.camera, options);
     frame.to_srgb8()
 }
@@ -160,7 +168,25 @@ fn instances_render_as_the_same_geometry_baked_in_all_three_algorithms() {
     let shared = scene_of(&write_cubes(true));
     let baked = scene_of(&write_cubes(false));
     for algorithm in [Algorithm::Gouraud, Algorithm::Phong, Algorithm::Ray] {
-        let (a, b) = (image(&shared, algorithm), image(&baked, algorithm));
+        // The display modes read the surface at each hit: its corners, normals and depth.
+        for mode in [
+            DisplayMode::Normals,
+            DisplayMode::Depth,
+            DisplayMode::HiddenLine,
+        ] {
+            let (a, b) = (
+                image(&shared, algorithm, mode),
+                image(&baked, algorithm, mode),
+            );
+            let psnr = common::psnr(&a, &b);
+            eprintln!("{algorithm:?} {mode:?}: instanced against baked, {psnr:.1} dB");
+            assert!(psnr >= 40.0, "{algorithm:?} {mode:?}: {psnr:.1} dB");
+        }
+        let shaded = DisplayMode::Shaded;
+        let (a, b) = (
+            image(&shared, algorithm, shaded),
+            image(&baked, algorithm, shaded),
+        );
         // Instances differ from the baked mesh by the rounding of where their points and
         // normals are moved (a ray moved into the mesh's space, normals moved out): at most
         // a few pixels of an edge, and a level here and there.
