@@ -32,6 +32,7 @@ pub mod bench;
 pub mod bundled_font;
 pub mod export;
 pub mod input_file;
+pub mod instance;
 pub mod memory_budget;
 pub mod mesh;
 pub mod model_folder;

@@ -137,8 +137,10 @@ pub fn warnings(scene: &Scene, camera: &Camera, world: &World) -> Vec<Warning> {
             index,
             label: object.label().to_string(),
         };
-        let total = built.mesh.triangle_count();
-        let count = built.mesh.zero_area_triangles();
+        // An instance's triangles are its shared mesh's: an invertible map keeps zero areas zero
+        // and the others not.
+        let total = built.local_mesh().triangle_count();
+        let count = built.local_mesh().zero_area_triangles();
         if count == total {
             found.push(Warning::NoArea(name()));
             continue;
@@ -150,7 +152,7 @@ pub fn warnings(scene: &Scene, camera: &Camera, world: &World) -> Vec<Warning> {
                 total,
             });
         }
-        if behind(&built.mesh, built.bounds, camera.position, forward) {
+        if built.instance.is_none() && behind(&built.mesh, built.bounds, camera.position, forward) {
             found.push(Warning::BehindCamera(name()));
         }
     }

@@ -8,11 +8,14 @@ use std::time::SystemTime;
 
 use rayon::prelude::*;
 
+use glam::Vec3;
+
+use crate::instance::{Instance, SharedMesh};
 use crate::memory_budget::{Estimate, distinct_texture_bytes};
 use crate::mesh::texture::Appearance;
 use crate::mesh::{
-    Mesh, MeshFile, MeshFileError, ModelPart, Sphere, UniquePositions, tessellate, tessellate_part,
-    with_corner_uvs,
+    Mesh, MeshFile, MeshFileError, ModelPart, Sphere, UniquePositions, instance_transform,
+    tessellate, tessellate_part, tessellate_shared, with_corner_uvs,
 };
 use crate::scene::{
     Falloff, Light, Material, MaterialSource, Object, Scene, SceneError, SceneWarning, Shape,
@@ -44,6 +47,10 @@ pub struct WorldObject {
     /// The model file's texture coordinates at each corner of each triangle (index-aligned with
     /// `mesh.triangles`), when the file gives them; read by the `uv` display mode.
     pub corner_uvs: Option<Vec<[glam::Vec2; 3]>>,
+    /// For an instance of a shared mesh: the mesh and its placement. Then `mesh`, `unique`
+    /// and `corner_uvs` are empty, and the triangles are the shared mesh's, in its own space
+    /// ([`WorldObject::local_mesh`]); `bounds` and `extent` are the placed mesh's, in the world.
+    pub instance: Option<Instance>,
 }
 
 impl WorldObject {
@@ -64,7 +71,83 @@ impl WorldObject {
             mesh,
             material,
             corner_uvs: None,
+            instance: None,
         }
+    }
+
+    /// An object drawing `instance` with `material` and `appearance`: bounds of the placed
+    /// mesh, nothing else of its own.
+    pub fn instance_of(instance: Instance, material: Material, appearance: Appearance) -> Self {
+        let extent = instance.extent();
+        let bounds = match extent {
+            Some((lo, hi)) => {
+                let center = (lo + hi) * 0.5;
+                Sphere {
+                    center,
+                    radius: instance.radius_about(center),
+                }
+            }
+            None => Mesh::default().bounding_sphere(None),
+        };
+        WorldObject {
+            mesh: Mesh::default(),
+            material,
+            appearance,
+            bounds,
+            extent,
+            unique: UniquePositions::default(),
+            corner_uvs: None,
+            instance: Some(instance),
+        }
+    }
+
+    /// The mesh the object's triangle indices refer to: its own (world space), or for an
+    /// instance the shared one (in the mesh's own space).
+    #[inline]
+    pub fn local_mesh(&self) -> &Mesh {
+        match &self.instance {
+            Some(instance) => &instance.shared.mesh,
+            None => &self.mesh,
+        }
+    }
+
+    /// The corner texture coordinates of [`WorldObject::local_mesh`]'s triangles, when the
+    /// file has them.
+    pub fn local_corner_uvs(&self) -> Option<&[[glam::Vec2; 3]]> {
+        match &self.instance {
+            Some(instance) => instance.shared.corner_uvs.as_deref(),
+            None => self.corner_uvs.as_deref(),
+        }
+    }
+
+    /// The world positions and unit normals at the corners of triangle `triangle` of
+    /// [`WorldObject::local_mesh`].
+    #[inline]
+    pub fn world_corners(&self, triangle: u32) -> ([Vec3; 3], [Vec3; 3]) {
+        let mesh = self.local_mesh();
+        let abc = mesh.triangles[triangle as usize];
+        match &self.instance {
+            Some(instance) => instance.corners(abc),
+            None => (
+                abc.map(|k| mesh.positions[k as usize]),
+                abc.map(|k| mesh.normals[k as usize]),
+            ),
+        }
+    }
+
+    /// This object placed in the world: an instance becomes an object of its own with the
+    /// shared mesh moved into world space; any other object is cloned.
+    pub fn placed(&self) -> WorldObject {
+        let Some(instance) = &self.instance else {
+            return self.clone();
+        };
+        let mut placed = WorldObject::with_appearance(
+            instance.placed_mesh(),
+            self.material,
+            self.appearance.clone(),
+        );
+        placed.corner_uvs = instance.placed_corner_uvs();
+        placed
     }
 
     /// This object with the texture coordinates of `geometry`, the file it was tessellated
@@ -80,7 +163,7 @@ impl WorldObject {
 
     /// Whether the object is drawn with a texture (it has one and texture coordinates).
     pub fn is_textured(&self) -> bool {
-        self.appearance.base_color.is_some() && self.mesh.uvs.is_some()
+        self.appearance.base_color.is_some() && self.local_mesh().uvs.is_some()
     }
 }
 
@@ -220,6 +303,53 @@ fn part_appearance(object: &Object, part: &ModelPart<'_>, mesh: Mesh) -> (Mesh, 
     }
 }
 
+/// The world objects of `part`, a part shared by several instances, of scene object `object`
+/// (the `index`-th) whose model is centred on `centre`: its mesh tessellated once, in its own
+/// space, and one object per instance holding it. An instance whose placement cannot be inverted
+/// in f32 gets a placed mesh of its own.
+fn instances_of(
+    object: &Object,
+    index: usize,
+    part: &ModelPart<'_>,
+    centre: Vec3,
+) -> Vec<(WorldObject, WorldObjectSource)> {
+    let (mesh, appearance) =
+        part_appearance(object, part, tessellate_shared(object, part.geometry));
+    let uvs = WorldObject::new(mesh, object.material).with_uvs_of(part.geometry);
+    let shared = Arc::new(SharedMesh {
+        unique: uvs.unique,
+        corner_uvs: uvs.corner_uvs,
+        mesh: uvs.mesh,
+    });
+    let material = part_material(object, part.material);
+    part.instances
+        .iter()
+        .map(|placement| {
+            let to_world = instance_transform(object, centre, placement.transform);
+            let source = WorldObjectSource {
+                object: index,
+                part: Some(placement.label.clone()),
+            };
+            let instance = Instance::new(shared.clone(), to_world);
+            let built = match instance {
+                Some(instance) => WorldObject::instance_of(instance, material, appearance.clone()),
+                None => {
+                    let mut geometry = part.geometry.clone();
+                    for p in &mut geometry.positions {
+                        *p = placement.transform.transform_point3(*p);
+                    }
+                    geometry.corner_normals = None;
+                    let mesh = tessellate_part(object, &geometry, centre);
+                    let (mesh, appearance) = part_appearance(object, part, mesh);
+                    WorldObject::with_appearance(mesh, material, appearance)
+                        .with_uvs_of(part.geometry)
+                }
+            };
+            (built, source)
+        })
+        .collect()
+}
+
 /// Checks the world `scene` would build from its loaded `models` (one per object, `None` for
 /// primitives) and `triangles` against the memory bound, before any object is tessellated: its
 /// triangles, its objects (a model's parts each become one) and its textures. The error names
@@ -231,13 +361,29 @@ fn check_budget(
     models: &[Option<Arc<MeshFile>>],
     triangles: u64,
 ) -> Result<(), SceneError> {
-    let objects = models
-        .iter()
-        .map(|model| model.as_ref().map_or(1, |m| m.parts().len() as u64))
-        .sum();
+    // Each shared part is stored once per scene object that draws its model, and placed once
+    // per instance.
+    let (mut objects, mut instances, mut placed, mut shared) = (0, 0, 0, 0);
+    for model in models {
+        let Some(model) = model else {
+            objects += 1;
+            continue;
+        };
+        for part in model.parts() {
+            if part.instances.is_empty() {
+                objects += 1;
+            } else {
+                instances += part.instances.len() as u64;
+                placed += part.placed_triangles() as u64;
+                shared += part.geometry.triangles.len() as u64;
+            }
+        }
+    }
     let estimate = Estimate {
-        triangles,
+        triangles: triangles - placed + shared,
         objects,
+        instances,
+        placed_triangles: placed,
         texture_bytes: distinct_texture_bytes(
             models
                 .iter()
@@ -342,10 +488,13 @@ impl World {
                     model
                         .parts()
                         .par_iter()
-                        .map(|part| {
+                        .flat_map_iter(|part| {
+                            if !part.instances.is_empty() {
+                                return instances_of(object, index, part, centre);
+                            }
                             let mesh = tessellate_part(object, part.geometry, centre);
                             let (mesh, appearance) = part_appearance(object, part, mesh);
-                            (
+                            vec![(
                                 WorldObject::with_appearance(
                                     mesh,
                                     part_material(object, part.material),
@@ -356,7 +505,7 @@ impl World {
                                     object: index,
                                     part: part.label.map(str::to_string),
                                 },
-                            )
+                            )]
                         })
                         .collect()
                 }
@@ -385,9 +534,55 @@ impl World {
         })
     }
 
-    /// Total triangles over all objects.
+    /// Total triangles over all objects, each instance counting its shared mesh's: the
+    /// triangles placed in the world.
     pub fn triangle_count(&self) -> usize {
-        self.objects.iter().map(|o| o.mesh.triangle_count()).sum()
+        self.objects
+            .iter()
+            .map(|o| o.local_mesh().triangle_count())
+            .sum()
+    }
+
+    /// Triangles stored once: every object's own, and each shared mesh's once however many
+    /// instances draw it.
+    pub fn stored_triangle_count(&self) -> usize {
+        let mut seen = std::collections::HashSet::new();
+        self.objects
+            .iter()
+            .map(|o| match &o.instance {
+                Some(i) if !seen.insert(Arc::as_ptr(&i.shared)) => 0,
+                _ => o.local_mesh().triangle_count(),
+            })
+            .sum()
+    }
+
+    /// Whether some object is an instance of a shared mesh.
+    pub fn has_instances(&self) -> bool {
+        self.objects.iter().any(|o| o.instance.is_some())
+    }
+
+    /// This world with every instance placed into a world-space mesh of its own
+    /// ([`WorldObject::placed`]), as the Z-buffer draws it; `None` when it has no instance.
+    pub fn placed(&self) -> Option<World> {
+        if !self.has_instances() {
+            return None;
+        }
+        Some(World {
+            objects: self.objects.par_iter().map(WorldObject::placed).collect(),
+            ..self.clone_settings()
+        })
+    }
+
+    /// The lights and settings of this world, with no objects.
+    fn clone_settings(&self) -> World {
+        World {
+            objects: Vec::new(),
+            lights: self.lights.clone(),
+            ambient: self.ambient,
+            background: self.background,
+            max_depth: self.max_depth,
+            falloff: self.falloff,
+        }
     }
 
     /// Axis-aligned bounds (min, max) of every object; `None` for an empty world.

@@ -73,11 +73,15 @@ fn the_box_reads_the_same_from_glb_from_json_with_an_external_buffer_and_from_th
     assert_eq!(file.triangle_count(), 12);
 }
 
-/// The parts of scene.gltf, found by label.
-fn part<'a>(model: &'a GltfModel, label: &str) -> &'a rastray::mesh::gltf::GltfPart {
-    model
-        .parts
-        .iter()
+/// The parts of `model` as drawn, every instance of a shared part placed on its own.
+fn drawn(model: &GltfModel) -> Vec<rastray::mesh::gltf::GltfPart> {
+    model.parts.iter().flat_map(|p| p.expanded()).collect()
+}
+
+/// The parts of scene.gltf as drawn, found by label.
+fn part(model: &GltfModel, label: &str) -> rastray::mesh::gltf::GltfPart {
+    drawn(model)
+        .into_iter()
         .find(|p| p.label.contains(label))
         .unwrap_or_else(|| panic!("no part {label}"))
 }
@@ -85,26 +89,27 @@ fn part<'a>(model: &'a GltfModel, label: &str) -> &'a rastray::mesh::gltf::GltfP
 #[test]
 fn the_scene_applies_the_node_hierarchy_of_its_default_scene() {
     let model = load("scene.gltf");
-    let labels: Vec<&str> = model.parts.iter().map(|p| p.label.as_str()).collect();
+    let parts = drawn(&model);
+    let labels: Vec<&str> = parts.iter().map(|p| p.label.as_str()).collect();
     assert_eq!(
         labels,
         [
             "node 1 \"Left\", mesh 0 \"Tri\" primitive 0",
-            "node 2 \"Right\", mesh 1 \"Strip\" primitive 0",
             "node 3 \"Mirror\", mesh 0 \"Tri\" primitive 0",
+            "node 2 \"Right\", mesh 1 \"Strip\" primitive 0",
             "node 4 \"Fan\", mesh 2 \"Fan\" primitive 0",
             "node 7 \"Textured\", mesh 4 \"Textured\" primitive 0",
         ],
-        "scene 0 in depth-first order; node 6 belongs to scene 1 only"
+        "scene 0 in depth-first order, a shared mesh's instances together where it is first met; \
+         node 6 belongs to scene 1 only"
     );
-    let counts: Vec<usize> = model
-        .parts
-        .iter()
-        .map(|p| p.geometry.triangles.len())
-        .collect();
+    // Mesh 0 is named by two nodes: read once, drawn at both.
+    assert_eq!(model.parts[0].label, "mesh 0 \"Tri\" primitive 0");
+    assert_eq!(model.parts[0].instances.len(), 2);
+    let counts: Vec<usize> = parts.iter().map(|p| p.geometry.triangles.len()).collect();
     assert_eq!(
         counts,
-        [1, 2, 1, 6, 1],
+        [1, 1, 2, 6, 1],
         "a 4-vertex strip makes 2, an 8-vertex fan 6"
     );
 
@@ -237,8 +242,8 @@ fn the_world_splits_the_file_into_one_object_per_primitive_with_its_material() {
         colours,
         [
             Vec3::new(0.1, 0.6, 0.2),
-            Vec3::splat(0.9),
             Vec3::new(0.1, 0.6, 0.2),
+            Vec3::splat(0.9),
             default,
             Vec3::new(0.5, 0.5, 1.0)
         ]

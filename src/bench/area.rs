@@ -24,6 +24,14 @@ pub fn total_face_area(world: &World, view: &View) -> f64 {
         .objects
         .iter()
         .map(|object| {
+            let placed;
+            let object = match object.instance {
+                Some(_) => {
+                    placed = object.placed();
+                    &placed
+                }
+                None => object,
+            };
             let clip: Vec<DVec3> = object
                 .mesh
                 .positions

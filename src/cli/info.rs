@@ -4,7 +4,7 @@ use super::stdout::outln;
 use std::path::Path;
 
 use glam::Vec3;
-use rastray::mesh::{Measurements, MeshFile, measure, placed_positions};
+use rastray::mesh::{Measurements, MeshFile, instance_transform, measure, placed_positions};
 use rastray::scene::Shape;
 use rastray::text_escape::Escaped;
 use rastray::world::{MeshFileCache, WorldObject};
@@ -48,7 +48,10 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
     }
     let mut measured = Vec::with_capacity(scene.objects.len());
     for (i, (object, parts)) in scene.objects.iter().zip(&parts_of).enumerate() {
-        let triangles: usize = parts.iter().map(|(b, _)| b.mesh.triangle_count()).sum();
+        let triangles: usize = parts
+            .iter()
+            .map(|(b, _)| b.local_mesh().triangle_count())
+            .sum();
         let model = match &object.shape {
             Shape::Mesh { path, .. } => cache.get(&base.join(path)).ok(),
             _ => None,
@@ -56,12 +59,29 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
         let file_parts = model.as_ref().map(|m| m.parts()).unwrap_or_default();
         // A model is measured from its file's welded vertices placed as the world places them
         // (the same values): a flat-shaded world mesh has three vertices a triangle to weld.
-        let placed: Vec<Vec<Vec3>> = match &model {
+        // A part shared by several instances is measured once per instance, placed.
+        let placed: Vec<(Vec<Vec3>, &[[u32; 3]])> = match &model {
             Some(model) => {
                 let (lo, hi) = model.bounds();
+                let centre = (lo + hi) * 0.5;
                 file_parts
                     .iter()
-                    .map(|p| placed_positions(object, p.geometry, (lo + hi) * 0.5))
+                    .flat_map(|p| {
+                        let triangles = &p.geometry.triangles[..];
+                        if p.instances.is_empty() {
+                            return vec![(placed_positions(object, p.geometry, centre), triangles)];
+                        }
+                        p.instances
+                            .iter()
+                            .map(|instance| {
+                                let to_world =
+                                    instance_transform(object, centre, instance.transform);
+                                let moved = p.geometry.positions.iter();
+                                let moved = moved.map(|&q| to_world.transform_point3(q)).collect();
+                                (moved, triangles)
+                            })
+                            .collect()
+                    })
                     .collect()
             }
             None => Vec::new(),
@@ -72,11 +92,7 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
                 .map(|(b, _)| (&b.mesh.positions[..], &b.mesh.triangles[..]))
                 .collect()
         } else {
-            placed
-                .iter()
-                .zip(&file_parts)
-                .map(|(p, part)| (&p[..], &part.geometry.triangles[..]))
-                .collect()
+            placed.iter().map(|(p, t)| (&p[..], *t)).collect()
         };
         let world_measure = measure(&meshes);
         measured.push(world_measure);
@@ -112,9 +128,9 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
                 outln!(
                     "        {}: {} triangles  colour {}{}{}",
                     Escaped(label),
-                    built.mesh.triangle_count(),
+                    built.local_mesh().triangle_count(),
                     fmt_vec(built.material.color),
-                    if built.mesh.colors.is_some() {
+                    if built.local_mesh().colors.is_some() {
                         "  vertex colours"
                     } else {
                         ""

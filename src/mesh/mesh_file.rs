@@ -10,7 +10,7 @@ use super::texture::{Appearance, Texture};
 use crate::scene::Material;
 
 use super::geometry::ModelGeometry;
-use super::gltf::{GltfError, GltfModel, ImportWarning, load_gltf};
+use super::gltf::{GltfError, GltfInstance, GltfModel, ImportWarning, load_gltf, placed_bounds};
 use super::model_format::{EXPECTED_MODEL, ModelFormat};
 use super::obj_error::ObjError;
 use super::obj_model::{ObjModel, load_obj_model};
@@ -87,6 +87,7 @@ impl MeshFile {
                     material: p.material,
                     texture: p.texture.as_ref().map(|(name, t)| (name.as_str(), t)),
                     appearance: Appearance::textured_by(p.texture.as_ref().map(|(_, t)| t)),
+                    instances: &[],
                 })
                 .collect(),
             MeshFile::Gltf(model) => model
@@ -102,6 +103,7 @@ impl MeshFile {
                         .as_ref()
                         .map(|b| (b.texture.name.as_str(), &b.texture)),
                     appearance: p.appearance.clone(),
+                    instances: &p.instances,
                 })
                 .collect(),
             MeshFile::Stl(StlModel { geometry, .. }) => vec![ModelPart {
@@ -110,6 +112,7 @@ impl MeshFile {
                 material: None,
                 texture: None,
                 appearance: Appearance::plain(),
+                instances: &[],
             }],
             MeshFile::Ply(PlyModel {
                 geometry,
@@ -121,6 +124,7 @@ impl MeshFile {
                 material: None,
                 texture: None,
                 appearance: appearance.clone(),
+                instances: &[],
             }],
         }
     }
@@ -148,18 +152,21 @@ impl MeshFile {
         matches!(self, MeshFile::Stl(_))
     }
 
-    /// Triangles over the whole file.
+    /// Triangles over the whole file, a shared part's counted once per instance: the
+    /// triangles placed in the world.
     pub fn triangle_count(&self) -> usize {
+        self.parts().iter().map(ModelPart::placed_triangles).sum()
+    }
+
+    /// Triangles the file stores: a shared part's counted once.
+    pub fn stored_triangle_count(&self) -> usize {
         self.geometries().iter().map(|g| g.triangles.len()).sum()
     }
 
-    /// Axis-aligned bounds (min, max) of the whole file, in its own space; inverted (MAX, MIN)
-    /// when empty.
+    /// Axis-aligned bounds (min, max) of the whole file, in its own space, every instance of a
+    /// shared part placed; inverted (MAX, MIN) when empty.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.geometries().iter().map(|g| g.bounds()).fold(
-            (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
-            |(a, b), (c, d)| (a.min(c), b.max(d)),
-        )
+        placed_bounds(self.parts().into_iter().map(|p| (p.geometry, p.instances)))
     }
 
     /// What the loader skipped; glTF and OBJ files and PLY textures report it.
@@ -197,4 +204,19 @@ pub struct ModelPart<'a> {
     pub texture: Option<(&'a str, &'a Arc<Texture>)>,
     /// How the file draws the part: its colour texture and sampler, and its alpha mode.
     pub appearance: Appearance,
+    /// Where a part shared by several glTF nodes is drawn (its geometry then in its mesh's
+    /// space); empty for a part drawn once, in the model's space.
+    pub instances: &'a [GltfInstance],
+}
+
+impl ModelPart<'_> {
+    /// The triangles the part places in the world: its own, once per instance.
+    pub fn placed_triangles(&self) -> usize {
+        self.geometry.triangles.len() * self.instances.len().max(1)
+    }
+
+    /// The world objects it becomes: one per instance, or one.
+    pub fn objects(&self) -> usize {
+        self.instances.len().max(1)
+    }
 }

@@ -47,5 +47,8 @@ pub use ply::{PlyEncoding, PlyError, PlyModel, load_ply};
 pub use prism::prism;
 pub use srgb::{srgb_byte_to_linear, srgb_to_linear};
 pub use stl::{StlEncoding, StlError, StlModel, load_stl};
-pub use tessellate::{object_transform, placed_positions, tessellate, tessellate_part};
+pub use tessellate::{
+    instance_transform, object_transform, placed_positions, tessellate, tessellate_part,
+    tessellate_shared,
+};
 pub use unique_positions::UniquePositions;

@@ -72,14 +72,37 @@ pub fn tessellate_part(object: &Object, geometry: &ModelGeometry, centre: Vec3) 
         .iter()
         .map(|&p| (p - centre) * *scale)
         .collect();
-    let colors = geometry.colors.as_deref();
-    let local = match (&geometry.corner_normals, object.smooth) {
-        (Some(normals), true) => {
-            with_file_normals(&positions, &geometry.triangles, normals, colors)
-        }
-        _ => with_colors_and_normals(&positions, &geometry.triangles, colors, object.smooth),
+    part_mesh(object, geometry, &positions).transformed(object_transform(object))
+}
+
+/// The mesh of a part that several instances share, in its own space: `geometry`'s positions
+/// as they are, with normals as [`tessellate_part`] makes them (the file's, or computed from
+/// these positions). [`instance_transform`] places it.
+pub fn tessellate_shared(object: &Object, geometry: &ModelGeometry) -> Mesh {
+    part_mesh(object, geometry, &geometry.positions)
+}
+
+/// Where [`tessellate_shared`]'s mesh is drawn for an instance placed in the model by
+/// `placement`: as [`tessellate_part`] places the model (centred on `centre`, scaled, then
+/// turned and moved by the object).
+pub fn instance_transform(object: &Object, centre: Vec3, placement: glam::Mat4) -> Affine3A {
+    let Shape::Mesh { scale, .. } = &object.shape else {
+        panic!("only mesh objects have model parts");
     };
-    local.transformed(object_transform(object))
+    object_transform(object)
+        * Affine3A::from_scale(Vec3::splat(*scale))
+        * Affine3A::from_translation(-centre)
+        * Affine3A::from_mat4(placement)
+}
+
+/// The mesh of `geometry`'s triangles on `positions` (one per geometry position), smooth or flat
+/// as `object` says, with the file's normals when it has them and is smooth.
+fn part_mesh(object: &Object, geometry: &ModelGeometry, positions: &[Vec3]) -> Mesh {
+    let colors = geometry.colors.as_deref();
+    match (&geometry.corner_normals, object.smooth) {
+        (Some(normals), true) => with_file_normals(positions, &geometry.triangles, normals, colors),
+        _ => with_colors_and_normals(positions, &geometry.triangles, colors, object.smooth),
+    }
 }
 
 /// The world positions of `geometry`'s (welded) vertices as [`tessellate_part`] places them,

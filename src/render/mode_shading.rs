@@ -129,7 +129,7 @@ pub fn depth_range(world: &World, view: &View) -> (f32, f32) {
 
 /// The texture coordinates at `hit`, when its object's model gave them.
 fn uv_at(world: &World, hit: &SurfaceHit) -> Option<Vec2> {
-    let uvs = world.objects[hit.object as usize].corner_uvs.as_deref()?;
+    let uvs = world.objects[hit.object as usize].local_corner_uvs()?;
     Some(hit.blend(*uvs.get(hit.triangle as usize)?))
 }
 

@@ -17,6 +17,9 @@ pub(super) struct Prepared {
     world: Arc<World>,
     /// The ray tracer's structure, built the first time the ray tracer draws this world.
     accel: Option<SceneAccel>,
+    /// For the Z-buffer, the world with every instance placed into a mesh of its own
+    /// ([`World::placed`]); built the first time the Z-buffer draws a world with instances.
+    placed: Option<World>,
 }
 
 impl Prepared {
@@ -25,6 +28,7 @@ impl Prepared {
         Prepared {
             world: world.clone(),
             accel: None,
+            placed: None,
         }
     }
 
@@ -33,9 +37,14 @@ impl Prepared {
         Arc::ptr_eq(&self.world, world)
     }
 
-    /// The world.
-    pub(super) fn world(&self) -> &World {
-        &self.world
+    /// The world as `algorithm` draws it: the ray tracer the world itself, whose instances it
+    /// moves rays into; the Z-buffer its placed copy, when the world has instances and it was
+    /// built ([`Prepared::build_for`]).
+    pub(super) fn world_for(&self, algorithm: Algorithm) -> &World {
+        match (algorithm, &self.placed) {
+            (Algorithm::Gouraud | Algorithm::Phong, Some(placed)) => placed,
+            _ => &self.world,
+        }
     }
 
     /// Builds what `algorithm` queries and is not built yet; returns the time this took (zero
@@ -45,7 +54,16 @@ impl Prepared {
         algorithm: Algorithm,
         progress: &Progress,
     ) -> Result<Duration, Cancelled> {
-        if algorithm != Algorithm::Ray || self.accel.is_some() {
+        if algorithm != Algorithm::Ray {
+            if self.placed.is_some() || !self.world.has_instances() {
+                return Ok(Duration::ZERO);
+            }
+            progress.check()?;
+            let started = std::time::Instant::now();
+            self.placed = self.world.placed();
+            return Ok(started.elapsed());
+        }
+        if self.accel.is_some() {
             return Ok(Duration::ZERO);
         }
         progress.check()?;

@@ -198,7 +198,7 @@ fn render_frame(
         .clamp(1, options.height as u64) as u32;
     frame.reshape(options.width, options.height, options.alpha);
     let (prepared, mut stats) = prepare_scene(scene, world, options.algorithm, progress)?;
-    let world = prepared.world();
+    let world = prepared.world_for(options.algorithm);
     let no_rays = RayCounts::default;
     let draw = |raster: &mut RasterScratch, view: &View, out: &mut [Vec3]| match options.algorithm {
         Algorithm::Gouraud => {

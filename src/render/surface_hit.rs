@@ -41,8 +41,9 @@ impl SurfaceHit {
 
     /// The corners of the hit triangle, world units.
     pub fn corners(&self, world: &World) -> [Vec3; 3] {
-        let mesh = &world.objects[self.object as usize].mesh;
-        mesh.triangles[self.triangle as usize].map(|i| mesh.positions[i as usize])
+        world.objects[self.object as usize]
+            .world_corners(self.triangle)
+            .0
     }
 
     /// `values` (three corner values) weighted by the barycentrics.
@@ -62,8 +63,9 @@ impl SurfaceHit {
     /// The unit normal at the hit, interpolated as the shading interpolates it and turned
     /// toward the eye of `view` (a face seen from behind shows its other side).
     pub fn normal(&self, world: &World, view: &View) -> Vec3 {
-        let mesh = &world.objects[self.object as usize].mesh;
-        let corners = mesh.triangles[self.triangle as usize].map(|i| mesh.normals[i as usize]);
+        let corners = world.objects[self.object as usize]
+            .world_corners(self.triangle)
+            .1;
         let n = self.blend(corners).normalize_or_zero();
         // The direction the view looks at the point along: parallel rays see every point
         // along `forward`.

@@ -70,7 +70,7 @@ impl<'a> ObjectTextures<'a> {
         let textured: Vec<_> = world
             .objects
             .iter()
-            .map(|o| match (&o.appearance.base_color, &o.mesh.uvs) {
+            .map(|o| match (&o.appearance.base_color, &o.local_mesh().uvs) {
                 (Some(binding), Some(uvs)) => Some((binding, &uvs[..])),
                 _ => None,
             })

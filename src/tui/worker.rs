@@ -16,7 +16,7 @@ use crate::render::{
 use crate::scene::{Camera, Scene};
 use crate::terminal_image::preview::PreviewImage;
 use crate::warnings::{Warning, warnings};
-use crate::world::{MeshFileCache, WorldObjectSource};
+use crate::world::{MeshFileCache, WorldObject, WorldObjectSource};
 
 /// Where a rendered image goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -257,8 +257,16 @@ fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
             && measured != Some((generation, object))
         {
             measured = Some((generation, object));
-            let parts: Vec<(&[glam::Vec3], &[[u32; 3]])> = current.objects
+            // An instance keeps no world-space mesh of its own: it is placed for measuring.
+            let objects: Vec<std::borrow::Cow<'_, WorldObject>> = current.objects
                 [first as usize..end as usize]
+                .iter()
+                .map(|o| match o.instance {
+                    Some(_) => std::borrow::Cow::Owned(o.placed()),
+                    None => std::borrow::Cow::Borrowed(o),
+                })
+                .collect();
+            let parts: Vec<(&[glam::Vec3], &[[u32; 3]])> = objects
                 .iter()
                 .map(|o| (&o.mesh.positions[..], &o.mesh.triangles[..]))
                 .collect();

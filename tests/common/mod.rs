@@ -83,3 +83,25 @@ pub fn rastray_in(args: &[&str], dir: &Path) -> std::process::Output {
         .output()
         .expect("runs")
 }
+
+/// `document` and `bin` in a GLB container: the 12-byte header, the JSON chunk padded with
+/// spaces and the binary chunk padded with zeros, each to four bytes.
+pub fn glb(document: &serde_json::Value, mut bin: Vec<u8>) -> Vec<u8> {
+    let mut json = serde_json::to_vec(document).expect("JSON");
+    while !json.len().is_multiple_of(4) {
+        json.push(b' ');
+    }
+    while !bin.len().is_multiple_of(4) {
+        bin.push(0);
+    }
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    for word in [0x4654_6C67, 2, total as u32, json.len() as u32, 0x4E4F_534A] {
+        out.extend_from_slice(&u32::to_le_bytes(word));
+    }
+    out.extend_from_slice(&json);
+    out.extend_from_slice(&u32::to_le_bytes(bin.len() as u32));
+    out.extend_from_slice(&u32::to_le_bytes(0x004E_4942));
+    out.extend_from_slice(&bin);
+    out
+}

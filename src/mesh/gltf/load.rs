@@ -1,7 +1,7 @@
 //! Reading a `.gltf` or `.glb` file: the container, the schema, the buffers, then every mesh
 //! instance of the default scene with its node transforms applied.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use ::gltf::json::validation::{Checked, Error as SchemaError, Validate};
@@ -13,7 +13,7 @@ use super::appearance::{ImageCache, PartAppearance, part_appearance};
 use super::buffers::load_buffers;
 use super::error::GltfError;
 use super::material::phong_from_pbr;
-use super::primitive::{PrimitiveRead, read_primitive};
+use super::primitive::{PrimitiveRead, placed_geometry, read_primitive};
 use super::warning::ImportWarning;
 use crate::input_file::{MAX_MODEL_BYTES, read_bounded};
 use crate::memory_budget::Estimate;
@@ -26,13 +26,18 @@ use crate::scene::Material;
 /// once per path).
 pub const MAX_NODE_INSTANCES: usize = 1_000_000;
 
-/// One drawn primitive instance: a node's primitive with that node's transform applied.
+/// One drawn primitive: a node's primitive with that node's transform applied, or a primitive
+/// of a mesh that several nodes name, read once and drawn at each of its `instances`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GltfPart {
-    /// Which primitive of which node, as `node 2 "Left", mesh 0 "Name" primitive 1`.
+    /// Which primitive of which node, as `node 2 "Left", mesh 0 "Name" primitive 1`; for a
+    /// shared primitive, `mesh 0 "Name" primitive 1`.
     pub label: String,
-    /// Its triangles in the model's space (every node transform applied).
+    /// Its triangles: in the model's space (every node transform applied) when `instances` is
+    /// empty; else in its mesh's own space.
     pub geometry: ModelGeometry,
+    /// Where a shared primitive is drawn, in scene order; empty for a primitive drawn once.
+    pub instances: Vec<GltfInstance>,
     /// Its material mapped to Phong; `None` when the primitive names no material.
     pub material: Option<Material>,
     /// Its base colour texture (with the geometry's corner UVs, when both could be read) and
@@ -40,7 +45,39 @@ pub struct GltfPart {
     pub appearance: Appearance,
 }
 
-/// A glTF file as rastray draws it: one part per primitive instance, in scene order.
+impl GltfPart {
+    /// The part as it is drawn: itself when it is drawn once; else one part per instance, its
+    /// geometry placed in the model's space as it was read before instancing, with the
+    /// instance's label.
+    pub fn expanded(&self) -> Vec<GltfPart> {
+        if self.instances.is_empty() {
+            return vec![self.clone()];
+        }
+        self.instances
+            .iter()
+            .map(|instance| GltfPart {
+                label: instance.label.clone(),
+                geometry: placed_geometry(&self.geometry, instance.transform),
+                instances: Vec::new(),
+                material: self.material,
+                appearance: self.appearance.clone(),
+            })
+            .collect()
+    }
+}
+
+/// One placement of a shared primitive.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GltfInstance {
+    /// Which node draws it, as `node 2 "Left", mesh 0 "Name" primitive 1`.
+    pub label: String,
+    /// From the mesh's space to the model's: the node's matrix with its parents'. Finite and
+    /// invertible (a node whose matrix is not has the primitive baked into a part of its own).
+    pub transform: Mat4,
+}
+
+/// A glTF file as rastray draws it: one part per primitive drawn once, and one per primitive of a
+/// mesh that several nodes name (drawn at each of its instances), in scene order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GltfModel {
     /// The drawn primitives; never empty.
@@ -54,18 +91,40 @@ pub struct GltfModel {
 }
 
 impl GltfModel {
-    /// Triangles over all parts.
+    /// Triangles over all parts, each shared part counted once per instance.
     pub fn triangle_count(&self) -> usize {
-        self.parts.iter().map(|p| p.geometry.triangles.len()).sum()
+        self.parts
+            .iter()
+            .map(|p| p.geometry.triangles.len() * p.instances.len().max(1))
+            .sum()
     }
 
-    /// Axis-aligned bounds (min, max) of every part, in the model's space.
+    /// Axis-aligned bounds (min, max) of every part, in the model's space, every instance of a
+    /// shared part placed.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.parts.iter().map(|p| p.geometry.bounds()).fold(
-            (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
-            |(a, b), (c, d)| (a.min(c), b.max(d)),
-        )
+        placed_bounds(self.parts.iter().map(|p| (&p.geometry, &p.instances[..])))
     }
+}
+
+/// Axis-aligned bounds (min, max) of `parts` (a geometry, and where it is placed: nowhere but
+/// where it is when there is no instance); inverted (MAX, MIN) when empty.
+pub fn placed_bounds<'a>(
+    parts: impl Iterator<Item = (&'a ModelGeometry, &'a [GltfInstance])>,
+) -> (Vec3, Vec3) {
+    let mut bounds = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+    for (geometry, instances) in parts {
+        if instances.is_empty() {
+            let (lo, hi) = geometry.bounds();
+            bounds = (bounds.0.min(lo), bounds.1.max(hi));
+        }
+        for instance in instances {
+            for &p in &geometry.positions {
+                let p = instance.transform.transform_point3(p);
+                bounds = (bounds.0.min(p), bounds.1.max(p));
+            }
+        }
+    }
+    bounds
 }
 
 /// Reads the glTF or GLB file at `path`; buffers named by relative URIs are read from its folder
@@ -83,11 +142,41 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
     let estimate = instanced_estimate(&instances);
     estimate.check(path).map_err(GltfError::OverBudget)?;
     folder.textures().count_model(estimate);
-    let mut parts = Vec::new();
+    // A mesh named by more than one node instance is read once, in its own space, and drawn at
+    // each; its primitives' parts by mesh index (`None`: skipped or empty).
+    let mut uses: HashMap<usize, usize> = HashMap::new();
+    for mesh in instances.iter().filter_map(|(node, _)| node.mesh()) {
+        *uses.entry(mesh.index()).or_default() += 1;
+    }
+    let mut shared: HashMap<usize, Vec<Option<usize>>> = HashMap::new();
+    let mut parts: Vec<GltfPart> = Vec::new();
     let mut skipped = 0;
     let mut triangles = 0u64;
     for (node, transform) in instances {
         let Some(mesh) = node.mesh() else { continue };
+        let node_label = match node.name() {
+            Some(name) => format!("node {} {name:?}", node.index()),
+            None => format!("node {}", node.index()),
+        };
+        let share = uses[&mesh.index()] > 1 && placeable(transform);
+        if share && let Some(found) = shared.get(&mesh.index()) {
+            for (primitive, part) in mesh.primitives().zip(found) {
+                triangles += primitive_corners(&primitive);
+                if triangles > 3 * crate::world::MAX_TRIANGLES {
+                    return Err(GltfError::TooManyTriangles {
+                        limit: crate::world::MAX_TRIANGLES,
+                    });
+                }
+                if let Some(part) = *part {
+                    let label = format!("{node_label}, {}", parts[part].label);
+                    parts[part]
+                        .instances
+                        .push(GltfInstance { label, transform });
+                }
+            }
+            continue;
+        }
+        let mut made = Vec::new();
         for primitive in mesh.primitives() {
             let label = match mesh.name() {
                 Some(name) => format!(
@@ -100,10 +189,7 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
             // A primitive makes at most as many triangles as it reads indices (strips and fans
             // make nearly that many): bound the total before anything is allocated, since a node
             // hierarchy can instance one mesh many times.
-            triangles += primitive
-                .indices()
-                .or_else(|| primitive.get(&::gltf::Semantic::Positions))
-                .map_or(0, |a| a.count() as u64);
+            triangles += primitive_corners(&primitive);
             if triangles > 3 * crate::world::MAX_TRIANGLES {
                 return Err(GltfError::TooManyTriangles {
                     limit: crate::world::MAX_TRIANGLES,
@@ -129,7 +215,9 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
                     uv_set: None,
                 },
             };
-            match read_primitive(&primitive, &label, &buffers, transform, uv_set)? {
+            let read_transform = if share { Mat4::IDENTITY } else { transform };
+            made.push(None);
+            match read_primitive(&primitive, &label, &buffers, read_transform, uv_set)? {
                 PrimitiveRead::Skipped(warning) => {
                     skipped += 1;
                     warnings.push(warning);
@@ -152,18 +240,30 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
                             pbr.roughness_factor(),
                         )
                     });
-                    let node_label = match node.name() {
-                        Some(name) => format!("node {} {name:?}", node.index()),
-                        None => format!("node {}", node.index()),
+                    let placed = format!("{node_label}, {label}");
+                    let (label, instances) = match share {
+                        true => (
+                            label,
+                            vec![GltfInstance {
+                                label: placed,
+                                transform,
+                            }],
+                        ),
+                        false => (placed, Vec::new()),
                     };
+                    *made.last_mut().expect("pushed above") = Some(parts.len());
                     parts.push(GltfPart {
-                        label: format!("{node_label}, {label}"),
+                        label,
                         geometry,
+                        instances,
                         material: phong,
                         appearance,
                     });
                 }
             }
+        }
+        if share {
+            shared.insert(mesh.index(), made);
         }
     }
     if parts.is_empty() {
@@ -179,29 +279,68 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
     })
 }
 
-/// The triangles and world objects every primitive instance of `instances` will make, counted
-/// from accessor counts before any is read: one object per primitive instance, a third of its
-/// indices (or of its positions, unindexed) in triangles, or nearly all of them for strips and
-/// fans.
+/// Indices a primitive reads (its positions, unindexed): a bound on its triangles, known before
+/// it is read.
+fn primitive_corners(primitive: &::gltf::Primitive<'_>) -> u64 {
+    primitive
+        .indices()
+        .or_else(|| primitive.get(&::gltf::Semantic::Positions))
+        .map_or(0, |a| a.count() as u64)
+}
+
+/// Whether a node's model-space `matrix` can place a shared mesh: finite and invertible, so that
+/// rays can be moved into the mesh's space and normals out of it. Any other matrix is baked into
+/// a copy of the mesh, as every placement was before instancing.
+fn placeable(matrix: Mat4) -> bool {
+    let det = glam::Mat3::from_mat4(matrix).determinant();
+    matrix.is_finite() && det.is_finite() && det != 0.0 && matrix.inverse().is_finite()
+}
+
+/// The triangles, world objects and instances every primitive instance of `instances` will
+/// make, counted from accessor counts before any is read: a third of a primitive's indices (or
+/// of its positions, unindexed) in triangles, or nearly all of them for strips and fans. A mesh
+/// that one node instance names makes one object per primitive; a mesh that several name is
+/// stored once and makes an instance per primitive per node instance, placing its triangles.
 fn instanced_estimate(instances: &[(Node<'_>, Mat4)]) -> Estimate {
+    let mut uses: HashMap<usize, u64> = HashMap::new();
+    for mesh in instances.iter().filter_map(|(node, _)| node.mesh()) {
+        *uses.entry(mesh.index()).or_default() += 1;
+    }
     let mut estimate = Estimate::default();
-    for primitive in instances
-        .iter()
-        .filter_map(|(node, _)| node.mesh())
-        .flat_map(|mesh| mesh.primitives())
-    {
-        let corners = primitive
-            .indices()
-            .or_else(|| primitive.get(&::gltf::Semantic::Positions))
-            .map_or(0, |a| a.count() as u64);
-        estimate.triangles += match primitive.mode() {
-            ::gltf::mesh::Mode::Triangles => corners / 3,
-            ::gltf::mesh::Mode::TriangleStrip | ::gltf::mesh::Mode::TriangleFan => {
-                corners.saturating_sub(2)
+    for (node, transform) in instances {
+        let Some(mesh) = node.mesh() else { continue };
+        let shared = uses[&mesh.index()] > 1 && placeable(*transform);
+        for primitive in mesh.primitives() {
+            let corners = primitive_corners(&primitive);
+            let triangles = match primitive.mode() {
+                ::gltf::mesh::Mode::Triangles => corners / 3,
+                ::gltf::mesh::Mode::TriangleStrip | ::gltf::mesh::Mode::TriangleFan => {
+                    corners.saturating_sub(2)
+                }
+                _ => 0,
+            };
+            if shared {
+                estimate.instances += 1;
+                estimate.placed_triangles += triangles;
+            } else {
+                estimate.triangles += triangles;
+                estimate.objects += 1;
             }
-            _ => 0,
-        };
-        estimate.objects += 1;
+        }
+    }
+    // Each shared mesh's triangles, stored once (bounded by its indices).
+    let mut counted = HashSet::new();
+    for (node, transform) in instances {
+        if let Some(mesh) = node.mesh()
+            && uses[&mesh.index()] > 1
+            && placeable(*transform)
+            && counted.insert(mesh.index())
+        {
+            estimate.triangles += mesh
+                .primitives()
+                .map(|p| primitive_corners(&p))
+                .sum::<u64>();
+        }
     }
     estimate
 }

@@ -10,6 +10,6 @@ mod primitive;
 mod warning;
 
 pub use error::GltfError;
-pub use load::{GltfModel, GltfPart, MAX_NODE_INSTANCES, load_gltf};
+pub use load::{GltfInstance, GltfModel, GltfPart, MAX_NODE_INSTANCES, load_gltf, placed_bounds};
 pub use material::phong_from_pbr;
 pub use warning::ImportWarning;

@@ -252,6 +252,44 @@ pub fn read_primitive(
     Ok(PrimitiveRead::Triangles(geometry))
 }
 
+/// `geometry` (a primitive read in its mesh's space) moved by `transform` as [`read_primitive`]
+/// moves it: positions moved, winding reversed where the transform mirrors, normals by the
+/// inverse transpose (none when one cannot be moved), UVs with their corners.
+pub fn placed_geometry(geometry: &ModelGeometry, transform: Mat4) -> ModelGeometry {
+    let linear = Mat3::from_mat4(transform);
+    let mirrors = linear.determinant() < 0.0;
+    let turn = |t: [u32; 3]| if mirrors { [t[0], t[2], t[1]] } else { t };
+    let corner_normals = geometry.corner_normals.as_ref().and_then(|corners| {
+        let flat: Vec<Vec3> = corners.iter().flatten().copied().collect();
+        let moved = transform_normals(&flat, linear)?;
+        Some(
+            moved
+                .chunks_exact(3)
+                .map(|c| turn_values([c[0], c[1], c[2]], mirrors))
+                .collect(),
+        )
+    });
+    ModelGeometry {
+        positions: geometry
+            .positions
+            .iter()
+            .map(|&p| transform.transform_point3(p))
+            .collect(),
+        triangles: geometry.triangles.iter().map(|&t| turn(t)).collect(),
+        corner_normals,
+        colors: geometry.colors.clone(),
+        corner_uvs: geometry
+            .corner_uvs
+            .as_ref()
+            .map(|uvs| uvs.iter().map(|&c| turn_values(c, mirrors)).collect()),
+    }
+}
+
+/// A triangle's three corner values, the last two swapped when `mirrors`.
+fn turn_values<T: Copy>(c: [T; 3], mirrors: bool) -> [T; 3] {
+    if mirrors { [c[0], c[2], c[1]] } else { c }
+}
+
 /// Where the `corner`-th index of a primitive lies, for an error that must not echo the value
 /// itself (it may be any bytes): "accessor 3 (buffer 1, offset 24)", or "the implicit order".
 fn index_place(indices: Option<&Accessor>, corner: usize) -> String {

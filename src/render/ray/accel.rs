@@ -9,13 +9,16 @@
 //! instead, so an object that comes before the nearest so far is searched up to the next float
 //! after its t, and its hit at the same t replaces the later object's.
 
+use std::collections::HashMap;
+use std::collections::hash_map::Entry;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use glam::Vec3;
+use glam::{Affine3A, Vec3};
 use rayon::prelude::*;
 use wide::{CmpGt, CmpLt};
 
-use super::bvh::Bvh;
+use super::bvh::{Bvh, BvhHit};
 use super::half_line::Ray;
 use super::intersect::segment_meets_sphere;
 use super::packet::{PacketHits, RayPacket};
@@ -39,8 +42,94 @@ pub struct ObjectAccel {
     /// The object's bounding sphere, grown by the scene epsilon so that rays grazing a vertex on
     /// the sphere are not culled by rounding.
     pub bounds: Sphere,
-    /// BVH over the object's triangles.
-    pub bvh: Bvh,
+    /// BVH over the object's triangles; for an instance, over its shared mesh's, in the mesh's
+    /// own space, and the same allocation for every instance of that mesh.
+    pub bvh: Arc<Bvh>,
+    /// For an instance, the map from the world into its mesh's space: a ray is moved by it,
+    /// direction not renormalised, so that t along it stays the world ray's t.
+    pub to_object: Option<Affine3A>,
+}
+
+impl ObjectAccel {
+    /// `ray` in the space of this object's BVH.
+    #[inline]
+    fn local_ray(&self, ray: &Ray) -> Ray {
+        match &self.to_object {
+            Some(m) => Ray::new(
+                m.transform_point3(Vec3::from(ray.origin)),
+                m.transform_vector3(Vec3::from(ray.dir)),
+            ),
+            None => *ray,
+        }
+    }
+
+    /// The nearest hit of `ray` (world space) in (t_min, t_max), t the world ray's.
+    #[inline]
+    fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<BvhHit> {
+        match self.to_object {
+            Some(_) => self.bvh.intersect(&self.local_ray(ray), t_min, t_max),
+            None => self.bvh.intersect(ray, t_min, t_max),
+        }
+    }
+
+    /// Whether `ray` (world space) meets a triangle in (t_min, t_max).
+    #[inline]
+    fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+        match self.to_object {
+            Some(_) => self.bvh.occluded(&self.local_ray(ray), t_min, t_max),
+            None => self.bvh.occluded(ray, t_min, t_max),
+        }
+    }
+
+    /// `packet` in the space of this object's BVH; `None` when it is the world's.
+    #[inline]
+    fn local_packet(&self, packet: &RayPacket) -> Option<RayPacket> {
+        let m = self.to_object.as_ref()?;
+        Some(RayPacket::new(
+            affine_points(m, packet.origin),
+            affine_vectors(m, packet.dir),
+            packet.t_min,
+        ))
+    }
+
+    /// [`Bvh::intersect_packet`] with the packet moved into the BVH's space.
+    #[inline]
+    fn intersect_packet(&self, packet: &RayPacket, object: u32, hits: &mut PacketHits) {
+        match self.local_packet(packet) {
+            Some(local) => self.bvh.intersect_packet(&local, object, hits),
+            None => self.bvh.intersect_packet(packet, object, hits),
+        }
+    }
+
+    /// [`Bvh::occluded_packet`] with the packet moved into the BVH's space.
+    #[inline]
+    fn occluded_packet(&self, packet: &RayPacket, t_max: F32x8, pending: F32x8) -> F32x8 {
+        match self.local_packet(packet) {
+            Some(local) => self.bvh.occluded_packet(&local, t_max, pending),
+            None => self.bvh.occluded_packet(packet, t_max, pending),
+        }
+    }
+}
+
+/// Eight points moved by `m`.
+#[inline]
+fn affine_points(m: &Affine3A, p: V3<F32x8>) -> V3<F32x8> {
+    let moved = affine_vectors(m, p);
+    let t = m.translation;
+    V3::new(
+        moved.x + F32x8::splat(t.x),
+        moved.y + F32x8::splat(t.y),
+        moved.z + F32x8::splat(t.z),
+    )
+}
+
+/// Eight directions moved by `m`'s linear part.
+#[inline]
+fn affine_vectors(m: &Affine3A, d: V3<F32x8>) -> V3<F32x8> {
+    let (a, b, c) = (m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis);
+    let row =
+        |k: usize| d.x * F32x8::splat(a[k]) + d.y * F32x8::splat(b[k]) + d.z * F32x8::splat(c[k]);
+    V3::new(row(0), row(1), row(2))
 }
 
 /// The nearest surface along a ray.
@@ -90,11 +179,33 @@ impl SceneAccel {
         flat_objects: usize,
     ) -> Result<SceneAccel, Cancelled> {
         let started = Instant::now();
-        let bvhs = world
+        // An instance's BVH is its shared mesh's, built once: the first instance of each
+        // shared mesh builds it, the others take it from that one (`Some(first)`).
+        let mut first_of = HashMap::new();
+        let built_by: Vec<Option<usize>> = world
+            .objects
+            .iter()
+            .enumerate()
+            .map(|(i, o)| {
+                let shared = Arc::as_ptr(&o.instance.as_ref()?.shared);
+                match first_of.entry(shared) {
+                    Entry::Occupied(first) => Some(*first.get()),
+                    Entry::Vacant(slot) => {
+                        slot.insert(i);
+                        None
+                    }
+                }
+            })
+            .collect();
+        let own = world
             .objects
             .par_iter()
-            .map(|o| Bvh::build_cancellable(&o.mesh, progress))
-            .collect::<Result<Vec<_>, Cancelled>>();
+            .zip(&built_by)
+            .map(|(o, by)| match by {
+                Some(_) => Ok(None),
+                None => Bvh::build_cancellable(o.local_mesh(), progress).map(|b| Some(Arc::new(b))),
+            })
+            .collect::<Result<Vec<_>, Cancelled>>()?;
         let radius = world
             .bounds()
             .map_or(1.0, |(lo, hi)| 0.5 * (hi - lo).length());
@@ -102,13 +213,17 @@ impl SceneAccel {
         let objects: Vec<ObjectAccel> = world
             .objects
             .iter()
-            .zip(bvhs?)
-            .map(|(o, bvh)| ObjectAccel {
+            .enumerate()
+            .map(|(i, o)| ObjectAccel {
                 bounds: Sphere {
                     center: o.bounds.center,
                     radius: o.bounds.radius + epsilon,
                 },
-                bvh,
+                bvh: match built_by[i] {
+                    Some(first) => own[first].clone().expect("the first instance builds it"),
+                    None => own[i].clone().expect("built above"),
+                },
+                to_object: o.instance.as_ref().map(|instance| instance.to_object),
             })
             .collect();
         let top = (objects.len() > flat_objects).then(|| {
@@ -116,9 +231,16 @@ impl SceneAccel {
             // tree's box tests never cull a ray the object's own BVH would let in.
             let boxes: Vec<ObjectBox> = objects
                 .iter()
-                .map(|o| {
+                .zip(&world.objects)
+                .map(|(o, w)| {
                     let grow = glam::Vec3A::splat(epsilon);
-                    o.bvh.root.map(|r| (r.lo() - grow, r.hi() + grow))
+                    match o.to_object {
+                        // An instance's box is its placed mesh's, in the world.
+                        Some(_) => w.extent.map(|(lo, hi)| {
+                            (glam::Vec3A::from(lo) - grow, glam::Vec3A::from(hi) + grow)
+                        }),
+                        None => o.bvh.root.map(|r| (r.lo() - grow, r.hi() + grow)),
+                    }
                 })
                 .collect();
             TopLevel::build(&boxes)
@@ -146,7 +268,7 @@ impl SceneAccel {
                 _ => *t_max,
             };
             if segment_meets_sphere(ray, o.bounds.center, o.bounds.radius, t_min, limit)
-                && let Some(h) = o.bvh.intersect(ray, t_min, limit)
+                && let Some(h) = o.intersect(ray, t_min, limit)
             {
                 *t_max = h.t;
                 best = Some(Hit {
@@ -171,7 +293,7 @@ impl SceneAccel {
             if !segment_meets_sphere(ray, o.bounds.center, o.bounds.radius, t_min, t_max) {
                 continue;
             }
-            if let Some(h) = o.bvh.intersect(ray, t_min, t_max) {
+            if let Some(h) = o.intersect(ray, t_min, t_max) {
                 t_max = h.t;
                 best = Some(Hit {
                     t: h.t,
@@ -205,7 +327,7 @@ impl SceneAccel {
                     .any()
                 {
                     found.t = limit;
-                    o.bvh.intersect_packet(packet, i, &mut found);
+                    o.intersect_packet(packet, i, &mut found);
                     hits.set(take_where(found.t.cmp_lt(limit), &found, &hits.get()));
                 }
                 false
@@ -221,7 +343,7 @@ impl SceneAccel {
         for (i, o) in self.objects.iter().enumerate() {
             let (center, radius) = (o.bounds.center, o.bounds.radius);
             if packet.meets_sphere(center, radius, hits.t).any() {
-                o.bvh.intersect_packet(packet, i as u32, &mut hits);
+                o.intersect_packet(packet, i as u32, &mut hits);
             }
         }
         hits
@@ -240,12 +362,12 @@ impl SceneAccel {
             return top.walk_ray(&ray, 0.0, &mut t_max, |i, _| {
                 let o = &self.objects[i as usize];
                 segment_meets_sphere(&ray, o.bounds.center, o.bounds.radius, 0.0, dist)
-                    && o.bvh.occluded(&ray, 0.0, dist)
+                    && o.occluded(&ray, 0.0, dist)
             });
         }
         self.objects.iter().any(|o| {
             segment_meets_sphere(&ray, o.bounds.center, o.bounds.radius, 0.0, dist)
-                && o.bvh.occluded(&ray, 0.0, dist)
+                && o.occluded(&ray, 0.0, dist)
         })
     }
 
@@ -274,7 +396,7 @@ impl SceneAccel {
                     let lanes =
                         pending & packet.meets_sphere(o.bounds.center, o.bounds.radius, dist);
                     if lanes.any() {
-                        let hit = o.bvh.occluded_packet(&packet, dist, lanes);
+                        let hit = o.occluded_packet(&packet, dist, lanes);
                         blocked |= hit;
                         pending &= !hit;
                         state.set((pending, blocked));
@@ -289,7 +411,7 @@ impl SceneAccel {
             if !lanes.any() {
                 continue;
             }
-            let hit = o.bvh.occluded_packet(&packet, dist, lanes);
+            let hit = o.occluded_packet(&packet, dist, lanes);
             blocked |= hit;
             pending &= !hit;
             if !pending.any() {

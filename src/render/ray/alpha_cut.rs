@@ -38,7 +38,7 @@ impl CutScene<'_> {
     /// hit's t) along unit `dir`, is cut out.
     #[inline]
     fn cuts(&self, object: u32, triangle: u32, u: f32, v: f32, path: f32, dir: Vec3) -> bool {
-        let mesh = &self.world.objects[object as usize].mesh;
+        let mesh = self.world.objects[object as usize].local_mesh();
         self.textures
             .is_cut(object as usize, mesh, triangle, u, v, path, dir)
     }

@@ -151,7 +151,10 @@ impl<'a> Tracer<'a> {
             accel,
             lighting: Lighting::new(world),
             materials: ObjectMaterials::new(world),
-            colored: world.objects.iter().any(|o| o.mesh.colors.is_some()),
+            colored: world
+                .objects
+                .iter()
+                .any(|o| o.local_mesh().colors.is_some()),
             textures: ObjectTextures::with_spread(world, 0.0),
             shadows: options.shadows,
             max_depth: options
@@ -204,9 +207,11 @@ impl<'a> Tracer<'a> {
     /// a ray on a large mesh would miss the cache in, is not read.
     #[inline]
     pub(super) fn face(&self, object: u32, slot: u32) -> Option<&Triangle> {
-        self.mesh(object)
-            .flat
-            .then(|| &self.accel.objects[object as usize].bvh.triangles[slot as usize])
+        // An instance's BVH holds its triangles in the mesh's own space: its surface comes
+        // from the corners, moved into the world.
+        let accel = &self.accel.objects[object as usize];
+        (self.mesh(object).flat && accel.to_object.is_none())
+            .then(|| &accel.bvh.triangles[slot as usize])
     }
 
     /// The surface of the flat triangle `face` where a ray along `d` hits it at barycentrics
@@ -223,16 +228,22 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// The mesh of object `object`.
+    /// The mesh object `object`'s triangle indices refer to (an instance's shared mesh).
     #[inline]
     fn mesh(&self, object: u32) -> &Mesh {
-        &self.world.objects[object as usize].mesh
+        self.world.objects[object as usize].local_mesh()
     }
 
-    /// The positions and normals at vertices `abc` of object `object`'s mesh.
+    /// The world positions and normals at vertices `abc` of object `object`'s mesh (an
+    /// instance's moved out of its mesh's space, normals by the inverse transpose, unit).
     #[inline]
     pub(super) fn corners(&self, object: u32, abc: [u32; 3]) -> Corners {
-        let mesh = self.mesh(object);
+        let o = &self.world.objects[object as usize];
+        if let Some(instance) = &o.instance {
+            let (positions, normals) = instance.corners(abc);
+            return Corners { positions, normals };
+        }
+        let mesh = &o.mesh;
         let abc = abc.map(|k| k as usize);
         Corners {
             positions: abc.map(|k| mesh.positions[k]),

@@ -4,6 +4,7 @@ mod bvh;
 #[cfg(target_arch = "x86_64")]
 mod bvh_bins;
 mod bvh_partition;
+mod instances;
 mod intersect;
 mod lane_leaves;
 mod top_level;
