@@ -118,9 +118,19 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
         if let (Shape::Mesh { up, .. }, Some(model)) = (&object.shape, &model) {
             outln!("        {}, up {up}", Escaped(&describe(model)));
         }
+        // The file part each world object came from: one object a part, or one an instance of
+        // a part that several nodes place.
+        let part_of_object: Vec<usize> = file_parts
+            .iter()
+            .enumerate()
+            .flat_map(|(n, p)| std::iter::repeat_n(n, p.instances.len().max(1)))
+            .collect();
         for (k, (built, label)) in parts.iter().enumerate() {
             if let Some(label) = label {
-                let texture = file_parts.get(k).and_then(|p| p.texture);
+                let texture = part_of_object
+                    .get(k)
+                    .and_then(|&n| file_parts.get(n))
+                    .and_then(|p| p.texture);
                 let texture = texture.map(|(name, t)| {
                     let (w, h) = t.size();
                     format!("  texture {} {w}×{h}", Escaped(name))
