@@ -15,11 +15,10 @@
 
 use glam::{Vec2, Vec3, Vec4};
 
-use crate::instance::Instance;
 use crate::mesh::Mesh;
 use crate::mesh::texture::{AlphaMode, TextureBinding};
 use crate::render::camera::View;
-use crate::world::World;
+use crate::world::{World, WorldObject};
 
 /// Steepest incidence the footprint is widened for: at grazing angles beyond it (cosine below
 /// 1/64) the level stops growing, as a GPU's anisotropy limit does.
@@ -45,9 +44,9 @@ pub struct ObjectTextures<'a> {
     masks: Vec<Option<Mask<'a>>>,
     /// Whether any object is cut out: worlds without masks never test alpha.
     pub any_mask: bool,
-    /// Per object, the instance that places its shared mesh (whose positions and normals are
-    /// in the mesh's own space, moved out before any footprint is measured).
-    instances: Vec<Option<&'a Instance>>,
+    /// The objects, whose instances' shared meshes are in their own space: their corners are
+    /// moved out ([`WorldObject::world_corners`]) before any footprint is measured.
+    objects: &'a [WorldObject],
     /// The angle a pixel spans, radians.
     spread: f32,
     /// The width a pixel spans at distance 0, world units (orthographic views; 0 in perspective).
@@ -93,7 +92,7 @@ impl<'a> ObjectTextures<'a> {
             })
             .collect();
         ObjectTextures {
-            instances: world.objects.iter().map(|o| o.instance.as_ref()).collect(),
+            objects: &world.objects,
             any: textured.iter().any(Option::is_some),
             textured,
             any_mask: masks.iter().any(Option::is_some),
@@ -133,7 +132,7 @@ impl<'a> ObjectTextures<'a> {
             let abc = mesh.triangles[triangle as usize].map(|i| i as usize);
             let w = [1.0 - u - v, u, v];
             let uv = abc.map(|i| uvs[i]);
-            let (p, normals) = self.world_corners(object, mesh, triangle);
+            let (p, normals) = self.objects[object].world_corners(triangle);
             let at = uv[0] * w[0] + uv[1] * w[1] + uv[2] * w[2];
             let n = normals
                 .iter()
@@ -162,25 +161,11 @@ impl<'a> ObjectTextures<'a> {
         let (_, uvs) = self.textured[object]?;
         let abc = mesh.triangles[triangle as usize];
         let uv = abc.map(|i| uvs[i as usize]);
-        let p = match self.instances[object] {
+        let p = match &self.objects[object].instance {
             Some(instance) => instance.corners(abc).0,
             None => abc.map(|i| mesh.positions[i as usize]),
         };
         Some((uv, texel_density(p, uv)))
-    }
-
-    /// The world positions and normals at the corners of triangle `triangle` of object
-    /// `object`, whose mesh (its own, or an instance's shared one) is `mesh`.
-    #[inline]
-    fn world_corners(&self, object: usize, mesh: &Mesh, triangle: u32) -> ([Vec3; 3], [Vec3; 3]) {
-        let abc = mesh.triangles[triangle as usize];
-        match self.instances[object] {
-            Some(instance) => instance.corners(abc),
-            None => (
-                abc.map(|i| mesh.positions[i as usize]),
-                abc.map(|i| mesh.normals[i as usize]),
-            ),
-        }
     }
 
     /// The linear RGBA texture colour of object `object` (textured) at `uv`, on a triangle of
