@@ -141,11 +141,13 @@ impl WorldObject {
         let Some(instance) = &self.instance else {
             return self.clone();
         };
-        let mut placed = WorldObject::with_appearance(
-            instance.placed_mesh(),
-            self.material,
-            self.appearance.clone(),
-        );
+        // A mirrored placement swaps its triangles' last two corners; per-corner values follow.
+        let appearance = match instance.mirrors() {
+            true => self.appearance.with_corners_swapped(),
+            false => self.appearance.clone(),
+        };
+        let mut placed =
+            WorldObject::with_appearance(instance.placed_mesh(), self.material, appearance);
         placed.corner_uvs = instance.placed_corner_uvs();
         placed
     }

@@ -1,11 +1,14 @@
 //! glTF `alphaMode: MASK` in all three algorithms: texels whose alpha is below the cutoff are
 //! no surface. A quad whose texture's alpha is a checker shows the background through its
 //! cut-out squares in every algorithm, Phong and the ray tracer agree on a cut-out quad before
-//! a box, and a cut-out caster lets light through where its alpha is 0.
+//! a box, and a cut-out caster lets light through where its alpha is 0. Vertex colours' alpha
+//! (`COLOR_0`) multiplies in, interpolated over each triangle.
 
 mod common;
 
-use common::textured_quad::{png_bytes, quad_gltf, render, scene_of, write};
+use common::textured_quad::{
+    png_bytes, quad_gltf, render, scene_of, vertex_alpha_quad_gltf, write,
+};
 use rastray::render::Algorithm;
 
 const ALGORITHMS: [Algorithm; 3] = [Algorithm::Gouraud, Algorithm::Phong, Algorithm::Ray];
@@ -168,24 +171,8 @@ fn a_cut_out_caster_lets_light_through_where_its_alpha_is_zero() {
     };
     let masked = caster("caster_masked.gltf", r#","alphaMode":"MASK""#);
     let opaque_caster = caster("caster_opaque.gltf", "");
-    let mut options = rastray::render::RenderOptions::new(Algorithm::Ray, 64, 64);
-    options.shadows = true;
-    // Mean red of the columns left of the middle (under the cut half's shadow) and right of it,
-    // the middle eight columns left out.
-    let halves_of = |scene: &rastray::Scene| {
-        let frame = common::render(&common::world(scene), &scene.camera, options).0;
-        let image = frame.to_srgb8();
-        let image = &image;
-        let mean = |columns: std::ops::Range<usize>| {
-            let values: Vec<f64> = (0..64)
-                .flat_map(|y| columns.clone().map(move |x| image[(y * 64 + x) * 3] as f64))
-                .collect();
-            values.iter().sum::<f64>() / values.len() as f64
-        };
-        (mean(0..28), mean(36..64))
-    };
-    let (lit, shadowed) = halves_of(&shadow_scene(&masked));
-    let (left, right) = halves_of(&shadow_scene(&opaque_caster));
+    let (lit, shadowed) = floor_halves(&shadow_scene(&masked));
+    let (left, right) = floor_halves(&shadow_scene(&opaque_caster));
     eprintln!("masked caster: {lit:.1} | {shadowed:.1}; opaque caster: {left:.1} | {right:.1}");
     // Lit: ambient 0.2 + diffuse 0.8 on a white floor is white (255); in shadow, ambient
     // 0.2 alone is sRGB 124.
@@ -198,4 +185,131 @@ fn a_cut_out_caster_lets_light_through_where_its_alpha_is_zero() {
         (left - 124.0).abs() < 3.0 && (right - 124.0).abs() < 3.0,
         "{left} {right}"
     );
+}
+
+/// The mean red of [`shadow_scene`]'s floor ray traced with shadows at 64×64, over the columns
+/// left of the middle (under the caster's left half) and right of it, the middle eight columns
+/// left out.
+fn floor_halves(scene: &rastray::Scene) -> (f64, f64) {
+    let mut options = rastray::render::RenderOptions::new(Algorithm::Ray, 64, 64);
+    options.shadows = true;
+    let frame = common::render(&common::world(scene), &scene.camera, options).0;
+    let image = frame.to_srgb8();
+    let image = &image;
+    let mean = |columns: std::ops::Range<usize>| {
+        let values: Vec<f64> = (0..64)
+            .flat_map(|y| columns.clone().map(move |x| image[(y * 64 + x) * 3] as f64))
+            .collect();
+        values.iter().sum::<f64>() / values.len() as f64
+    };
+    (mean(0..28), mean(36..64))
+}
+
+/// Alpha 0 at the quad's left corners (x = −1) and 1 at its right ones: interpolated, the alpha
+/// at x is (x + 1) / 2.
+const LEFT_TO_RIGHT: [f32; 4] = [0.0, 1.0, 1.0, 0.0];
+
+#[test]
+fn vertex_alpha_cuts_a_masked_quad_where_it_falls_below_the_cutoff_in_every_algorithm() {
+    for (cutoff, first_drawn) in [(0.25, 16), (0.5, 32), (0.75, 48)] {
+        let extra = format!(r#","alphaMode":"MASK","alphaCutoff":{cutoff}"#);
+        let gltf = vertex_alpha_quad_gltf(LEFT_TO_RIGHT, &extra);
+        let model = write(
+            "alpha-vertex",
+            &format!("ramp{cutoff}.gltf"),
+            gltf.as_bytes(),
+        );
+        for algorithm in ALGORITHMS {
+            let got = render(&square_on(&model), algorithm, SIDE, 1).to_srgb8();
+            // Pixel column i's centre is at alpha (i + 0.5) / 64: at least 1/128 from every
+            // cutoff tried, so each column is wholly cut (blue) or wholly drawn (white).
+            for (k, pixel) in got.chunks(3).enumerate() {
+                let (i, j) = (k as u32 % SIDE, k as u32 / SIDE);
+                let expected = if i < first_drawn {
+                    [0, 0, 255]
+                } else {
+                    [255; 3]
+                };
+                assert_eq!(
+                    pixel, expected,
+                    "{algorithm:?}, alphaCutoff {cutoff}: pixel ({i}, {j})"
+                );
+            }
+        }
+    }
+    // Without MASK the vertex alpha is ignored: the whole quad is drawn.
+    let model = write(
+        "alpha-vertex",
+        "ramp-opaque.gltf",
+        vertex_alpha_quad_gltf(LEFT_TO_RIGHT, "").as_bytes(),
+    );
+    for algorithm in ALGORITHMS {
+        let got = render(&square_on(&model), algorithm, SIDE, 1).to_srgb8();
+        assert!(got.chunks(3).all(|p| p == [255; 3]), "{algorithm:?}");
+    }
+}
+
+#[test]
+fn vertex_alpha_multiplies_the_base_colour_factors_alpha() {
+    // Alpha 0.8 everywhere from the vertices, times a factor of 0.5: 0.4, below the default
+    // cutoff of 0.5, so the whole quad is cut; with a factor of 1 none of it is.
+    for (factor, drawn) in [(0.5, 0), (1.0, SIDE * SIDE)] {
+        let gltf = vertex_alpha_quad_gltf([0.8; 4], r#","alphaMode":"MASK""#).replace(
+            r#""metallicFactor":0.0"#,
+            &format!(r#""baseColorFactor":[1,1,1,{factor}],"metallicFactor":0.0"#),
+        );
+        let model = write(
+            "alpha-vertex",
+            &format!("factor{factor}.gltf"),
+            gltf.as_bytes(),
+        );
+        for algorithm in ALGORITHMS {
+            let got = render(&square_on(&model), algorithm, SIDE, 1).to_srgb8();
+            let covered = got.chunks(3).filter(|p| *p != [0, 0, 255]).count() as u32;
+            assert_eq!(covered, drawn, "{algorithm:?}, factor {factor}");
+        }
+    }
+}
+
+#[test]
+fn a_caster_cut_by_its_vertex_alpha_lets_light_through_its_cut_half() {
+    let gltf = vertex_alpha_quad_gltf(LEFT_TO_RIGHT, r#","alphaMode":"MASK""#);
+    let caster = write("alpha-vertex", "caster.gltf", gltf.as_bytes());
+    let (lit, shadowed) = floor_halves(&shadow_scene(&caster));
+    eprintln!("vertex-alpha caster: {lit:.1} | {shadowed:.1}");
+    assert!(lit > 250.0, "light through the cut half: {lit:.1}");
+    assert!(
+        (shadowed - 124.0).abs() < 3.0,
+        "shadow of the kept half: {shadowed:.1}"
+    );
+}
+
+#[test]
+fn a_mirrored_instance_keeps_its_vertex_alpha_at_the_right_corners_in_every_algorithm() {
+    // Two nodes name the quad, both mirrored in x (the second 3 behind the first): one mesh
+    // drawn as two instances. Mirrored, the alpha at x is (1 − x) / 2, so the right half is cut.
+    // The Z-buffer draws placed copies whose corners are swapped to keep fronts in front; the
+    // ray tracer reads the shared mesh: both must cut the same half.
+    let gltf = vertex_alpha_quad_gltf(LEFT_TO_RIGHT, r#","alphaMode":"MASK""#)
+        .replace(
+            r#""scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}]"#,
+            r#""scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0,"scale":[-1,1,1]},{"mesh":0,"scale":[-1,1,1],"translation":[0,0,-3]}]"#,
+        );
+    assert!(gltf.contains(r#""nodes":[0,1]"#));
+    let model = write("alpha-vertex", "mirrored.gltf", gltf.as_bytes());
+    // The file's bounds are centred at z = −1.5: put the front quad back at z = 0.
+    let scene = rastray::Scene {
+        background: glam::Vec3::Z,
+        ..scene_of(&model, "position = [0.0, 0.0, -1.5]")
+    };
+    for algorithm in ALGORITHMS {
+        let got = render(&scene, algorithm, SIDE, 1).to_srgb8();
+        // Column i's centre has alpha 1 − (i + 0.5) / 64 on the front quad; where that is cut,
+        // the quad behind is cut too (or not there).
+        for (k, pixel) in got.chunks(3).enumerate() {
+            let (i, j) = (k as u32 % SIDE, k as u32 / SIDE);
+            let expected = if i < SIDE / 2 { [255; 3] } else { [0, 0, 255] };
+            assert_eq!(pixel, expected, "{algorithm:?}: pixel ({i}, {j})");
+        }
+    }
 }

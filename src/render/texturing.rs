@@ -32,6 +32,8 @@ struct Mask<'a> {
     factor: f32,
     /// The texture whose alpha multiplies in, with the mesh's coordinates, when drawn textured.
     texture: Option<(&'a TextureBinding, &'a [Vec2])>,
+    /// The vertex alpha at each triangle's corners, which multiplies in, when it has one.
+    corner_alphas: Option<&'a [[f32; 3]]>,
 }
 
 /// The textures of a world's objects and the cone spread of the view.
@@ -88,6 +90,7 @@ impl<'a> ObjectTextures<'a> {
                     cutoff,
                     factor: o.appearance.alpha_factor,
                     texture: *texture,
+                    corner_alphas: o.appearance.corner_alphas.as_deref(),
                 }),
             })
             .collect();
@@ -111,7 +114,8 @@ impl<'a> ObjectTextures<'a> {
     /// Whether the point at barycentrics (`u`, `v`) (the weights of the second and third
     /// corners) of triangle `triangle` of object `object` (whose mesh is `mesh`) is cut out:
     /// its alpha, the base colour factor's times the texture's (read as the colour is, at path
-    /// length `distance` along unit `dir`, the normal interpolated there), is below the cutoff.
+    /// length `distance` along unit `dir`, the normal interpolated there) times the vertex
+    /// alpha interpolated there, is below the cutoff.
     /// Always false on an object that is not masked.
     #[allow(clippy::too_many_arguments)]
     pub fn is_cut(
@@ -128,6 +132,10 @@ impl<'a> ObjectTextures<'a> {
             return false;
         };
         let mut alpha = mask.factor;
+        if let Some(corners) = mask.corner_alphas {
+            let [a, b, c] = corners[triangle as usize];
+            alpha *= a * (1.0 - u - v) + b * u + c * v;
+        }
         if let Some((binding, uvs)) = mask.texture {
             let abc = mesh.triangles[triangle as usize].map(|i| i as usize);
             let w = [1.0 - u - v, u, v];

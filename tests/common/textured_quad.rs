@@ -57,6 +57,36 @@ pub fn quad_gltf(
     )
 }
 
+/// A glTF file of the same quad as [`quad_gltf`], untextured, its white vertex colours
+/// (`COLOR_0`, RGBA floats) carrying `alphas` at the corners (-1, -1), (1, -1), (1, 1),
+/// (-1, 1), and `material_extra` added to its material.
+pub fn vertex_alpha_quad_gltf(alphas: [f32; 4], material_extra: &str) -> String {
+    let positions: [[f32; 3]; 4] = [[-1., -1., 0.], [1., -1., 0.], [1., 1., 0.], [-1., 1., 0.]];
+    let mut bytes = Vec::new();
+    for c in positions.iter().flatten() {
+        bytes.extend(c.to_le_bytes());
+    }
+    for a in alphas {
+        for c in [1.0f32, 1.0, 1.0, a] {
+            bytes.extend(c.to_le_bytes());
+        }
+    }
+    for i in [0u16, 1, 2, 0, 2, 3] {
+        bytes.extend(i.to_le_bytes());
+    }
+    let data = STANDARD.encode(&bytes);
+    format!(
+        r#"{{"asset":{{"version":"2.0"}},"scene":0,"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"COLOR_0":1}},"indices":2,"material":0}}]}}],
+"materials":[{{"pbrMetallicRoughness":{{"metallicFactor":0.0,"roughnessFactor":1.0}}{material_extra}}}],
+"buffers":[{{"byteLength":{len},"uri":"data:application/octet-stream;base64,{data}"}}],
+"bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":48}},{{"buffer":0,"byteOffset":48,"byteLength":64}},{{"buffer":0,"byteOffset":112,"byteLength":12}}],
+"accessors":[{{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]}},
+{{"bufferView":1,"componentType":5126,"count":4,"type":"VEC4"}},{{"bufferView":2,"componentType":5123,"count":6,"type":"SCALAR"}}]}}"#,
+        len = bytes.len()
+    )
+}
+
 /// `image` as PNG bytes.
 pub fn png_bytes<P>(image: &image::ImageBuffer<P, Vec<P::Subpixel>>) -> Vec<u8>
 where

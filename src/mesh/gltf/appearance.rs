@@ -125,6 +125,7 @@ pub fn part_appearance(
         base_color: None,
         alpha_factor: pbr.base_color_factor()[3],
         alpha_mode,
+        corner_alphas: None,
     };
     let Some(info) = pbr.base_color_texture() else {
         return PartAppearance {

@@ -3,6 +3,7 @@
 
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use ::gltf::json::validation::{Checked, Error as SchemaError, Validate};
 use ::gltf::json::{self, mesh::Semantic};
@@ -13,12 +14,12 @@ use super::appearance::{ImageCache, PartAppearance, part_appearance};
 use super::buffers::load_buffers;
 use super::error::GltfError;
 use super::material::phong_from_pbr;
-use super::primitive::{PrimitiveRead, placed_geometry, read_primitive};
+use super::primitive::{PrimitiveRead, mirrors, placed_geometry, read_primitive};
 use super::warning::ImportWarning;
 use crate::input_file::{MAX_MODEL_BYTES, read_bounded};
 use crate::memory_budget::Estimate;
 use crate::mesh::ModelGeometry;
-use crate::mesh::texture::Appearance;
+use crate::mesh::texture::{AlphaMode, Appearance};
 use crate::model_folder::ModelFolder;
 use crate::scene::Material;
 
@@ -60,7 +61,11 @@ impl GltfPart {
                 geometry: placed_geometry(&self.geometry, instance.transform),
                 instances: Vec::new(),
                 material: self.material,
-                appearance: self.appearance.clone(),
+                // `placed_geometry` swaps a mirrored copy's corners; its alphas follow.
+                appearance: match mirrors(instance.transform) {
+                    true => self.appearance.with_corners_swapped(),
+                    false => self.appearance.clone(),
+                },
             })
             .collect()
     }
@@ -223,8 +228,8 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
                     warnings.push(warning);
                 }
                 // Fewer than three indices: nothing to draw, and no part to show for it.
-                PrimitiveRead::Triangles(geometry) if geometry.triangles.is_empty() => {}
-                PrimitiveRead::Triangles(geometry) => {
+                PrimitiveRead::Triangles(geometry, _) if geometry.triangles.is_empty() => {}
+                PrimitiveRead::Triangles(geometry, corner_alphas) => {
                     if let (Some((set, _)), None) = (uv_set, &geometry.corner_uvs) {
                         warnings.push(ImportWarning::NoTextureCoordinates {
                             primitive: label.clone(),
@@ -250,6 +255,14 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
                             }],
                         ),
                         false => (placed, Vec::new()),
+                    };
+                    // Vertex alpha matters only where alpha cuts the part out.
+                    let appearance = match appearance.alpha_mode {
+                        AlphaMode::Mask { .. } => Appearance {
+                            corner_alphas: corner_alphas.map(Arc::from),
+                            ..appearance
+                        },
+                        AlphaMode::Opaque => appearance,
                     };
                     *made.last_mut().expect("pushed above") = Some(parts.len());
                     parts.push(GltfPart {

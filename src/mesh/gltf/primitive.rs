@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use ::gltf::accessor::{DataType, Dimensions};
 use ::gltf::mesh::Mode;
 use ::gltf::{Accessor, Primitive, Semantic};
-use glam::{Mat3, Mat4, Vec2, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
 use super::accessor::check_accessor;
 use super::error::GltfError;
@@ -16,8 +16,9 @@ use crate::mesh::{ModelGeometry, unit_or_zero};
 /// What became of a primitive.
 #[derive(Debug)]
 pub enum PrimitiveRead {
-    /// Its triangles, moved by the node transform.
-    Triangles(ModelGeometry),
+    /// Its triangles, moved by the node transform, and `COLOR_0`'s alpha at each triangle's
+    /// corners when the colours have alpha and it is below 1 somewhere.
+    Triangles(ModelGeometry, Option<Vec<[f32; 3]>>),
     /// Not drawn, and why.
     Skipped(ImportWarning),
 }
@@ -26,7 +27,8 @@ pub enum PrimitiveRead {
 /// the node's model-space matrix. Triangle strips and fans become triangle lists; a transform
 /// that mirrors (negative determinant) has its triangles' winding reversed, so fronts stay fronts.
 /// Vertex colours come from `COLOR_0` (RGB or RGBA, float or normalized 8- or 16-bit; linear,
-/// as the specification says; alpha is not drawn). With `uv_set`, the texture coordinates of
+/// as the specification says); their alpha, when below 1 somewhere, is kept per triangle
+/// corner for a cut-out (`MASK`) material to multiply in. With `uv_set`, the texture coordinates of
 /// `TEXCOORD_n` (float, or normalized 8- or 16-bit) become the corner UVs, moved by the
 /// transform; a primitive without that set has none.
 pub fn read_primitive(
@@ -161,13 +163,13 @@ pub fn read_primitive(
         ),
         None => None,
     };
-    let colors: Option<Vec<Vec3>> = match &color_accessor {
+    let (colors, alphas): (Option<Vec<Vec3>>, Option<Vec<f32>>) = match &color_accessor {
         Some(accessor) => {
-            let colors: Vec<Vec3> = reader
+            let colors: Vec<Vec4> = reader
                 .read_colors(0)
                 .ok_or_else(|| unread(accessor, "COLOR_0"))?
-                .into_rgb_f32()
-                .map(Vec3::from)
+                .into_rgba_f32()
+                .map(Vec4::from)
                 .collect();
             if colors.iter().any(|c| !c.is_finite()) {
                 return Err(accessor_error(
@@ -176,14 +178,17 @@ pub fn read_primitive(
                     "a colour is not a finite number".into(),
                 ));
             }
-            Some(
-                colors
-                    .iter()
-                    .map(|c| c.clamp(Vec3::ZERO, Vec3::ONE))
-                    .collect(),
-            )
+            let colors: Vec<Vec4> = colors
+                .iter()
+                .map(|c| c.clamp(Vec4::ZERO, Vec4::ONE))
+                .collect();
+            let alphas = colors
+                .iter()
+                .any(|c| c.w < 1.0)
+                .then(|| colors.iter().map(|c| c.w).collect());
+            (Some(colors.iter().map(|c| c.truncate()).collect()), alphas)
         }
-        None => None,
+        None => (None, None),
     };
     let uvs: Option<Vec<Vec2>> = match (&uv_accessor, uv_set) {
         (Some(accessor), Some((set, uv_transform))) => {
@@ -231,7 +236,7 @@ pub fn read_primitive(
         });
     }
     let linear = Mat3::from_mat4(transform);
-    if linear.determinant() < 0.0 {
+    if mirrors(transform) {
         for t in &mut triangles {
             t.swap(1, 2);
         }
@@ -249,7 +254,13 @@ pub fn read_primitive(
             .map(|t| t.map(|i| uvs[i as usize]))
             .collect()
     });
-    Ok(PrimitiveRead::Triangles(geometry))
+    let corner_alphas = alphas.map(|alphas| {
+        triangles
+            .iter()
+            .map(|t| t.map(|i| alphas[i as usize]))
+            .collect()
+    });
+    Ok(PrimitiveRead::Triangles(geometry, corner_alphas))
 }
 
 /// `geometry` (a primitive read in its mesh's space) moved by `transform` as [`read_primitive`]
@@ -257,7 +268,7 @@ pub fn read_primitive(
 /// inverse transpose (none when one cannot be moved), UVs with their corners.
 pub fn placed_geometry(geometry: &ModelGeometry, transform: Mat4) -> ModelGeometry {
     let linear = Mat3::from_mat4(transform);
-    let mirrors = linear.determinant() < 0.0;
+    let mirrors = mirrors(transform);
     let turn = |t: [u32; 3]| if mirrors { [t[0], t[2], t[1]] } else { t };
     let corner_normals = geometry.corner_normals.as_ref().and_then(|corners| {
         let flat: Vec<Vec3> = corners.iter().flatten().copied().collect();
@@ -283,6 +294,12 @@ pub fn placed_geometry(geometry: &ModelGeometry, transform: Mat4) -> ModelGeomet
             .as_ref()
             .map(|uvs| uvs.iter().map(|&c| turn_values(c, mirrors)).collect()),
     }
+}
+
+/// Whether `transform` mirrors (its linear part's determinant is negative): a placed copy then
+/// has its triangles' last two corners swapped.
+pub fn mirrors(transform: Mat4) -> bool {
+    Mat3::from_mat4(transform).determinant() < 0.0
 }
 
 /// A triangle's three corner values, the last two swapped when `mirrors`.

@@ -38,6 +38,10 @@ pub struct Appearance {
     pub alpha_factor: f32,
     /// How alpha cuts the part out.
     pub alpha_mode: AlphaMode,
+    /// The vertex colours' alpha (glTF `COLOR_0`'s fourth component) at each triangle's corners,
+    /// one entry per triangle of the part's mesh, in its triangle order and corner order. Kept
+    /// only for a `MASK` part whose vertex alpha is below 1 somewhere; `None` is alpha 1.
+    pub corner_alphas: Option<Arc<[[f32; 3]]>>,
 }
 
 impl Default for Appearance {
@@ -53,6 +57,7 @@ impl Appearance {
             base_color: None,
             alpha_factor: 1.0,
             alpha_mode: AlphaMode::Opaque,
+            corner_alphas: None,
         }
     }
 
@@ -64,6 +69,18 @@ impl Appearance {
                 sampler: Sampler::default(),
             }),
             ..Appearance::plain()
+        }
+    }
+
+    /// This appearance for a copy of its mesh whose triangles have their second and third
+    /// corners swapped (a mirrored placement): the corner alphas swap with them.
+    pub fn with_corners_swapped(&self) -> Appearance {
+        Appearance {
+            corner_alphas: self
+                .corner_alphas
+                .as_ref()
+                .map(|alphas| alphas.iter().map(|&[a, b, c]| [a, c, b]).collect()),
+            ..self.clone()
         }
     }
 
