@@ -263,12 +263,14 @@ impl SceneAccel {
         let mut t_max = t_max;
         top.walk_ray(ray, t_min, &mut t_max, |i, t_max| {
             let o = &self.objects[i as usize];
-            let limit = match best {
-                Some(b) if b.object > i => b.t.next_up(),
-                _ => *t_max,
+            // A tie is searched for past the next float (see `tie_reach`), and taken below it.
+            let (limit, reach) = match best {
+                Some(b) if b.object > i => (b.t.next_up(), tie_reach_of(b.t, self.epsilon)),
+                _ => (*t_max, *t_max),
             };
-            if segment_meets_sphere(ray, o.bounds.center, o.bounds.radius, t_min, limit)
-                && let Some(h) = o.intersect(ray, t_min, limit)
+            if segment_meets_sphere(ray, o.bounds.center, o.bounds.radius, t_min, reach)
+                && let Some(h) = o.intersect(ray, t_min, reach)
+                && h.t < limit
             {
                 *t_max = h.t;
                 best = Some(Hit {
@@ -322,11 +324,12 @@ impl SceneAccel {
                 let o = &self.objects[i as usize];
                 let mut found = hits.get();
                 let limit = tie_limits(&found, i);
+                let reach = tie_reach(&found, i, self.epsilon);
                 if packet
-                    .meets_sphere(o.bounds.center, o.bounds.radius, limit)
+                    .meets_sphere(o.bounds.center, o.bounds.radius, reach)
                     .any()
                 {
-                    found.t = limit;
+                    found.t = reach;
                     o.intersect_packet(packet, i, &mut found);
                     hits.set(take_where(found.t.cmp_lt(limit), &found, &hits.get()));
                 }
@@ -436,6 +439,31 @@ fn tie_limits(hits: &PacketHits, object: u32) -> F32x8 {
             t[k]
         }
     }))
+}
+
+/// Per lane, how far `object` is searched where [`tie_limits`] lets a tie in: see
+/// [`tie_reach_of`]. Hits found past the tie limit are not taken.
+#[inline]
+fn tie_reach(hits: &PacketHits, object: u32, epsilon: f32) -> F32x8 {
+    let t = hits.t.to_array();
+    let owner = hits.object.to_array();
+    F32x8::from(std::array::from_fn::<f32, 8, _>(|k| {
+        if owner[k] > object && t[k] < f32::INFINITY {
+            tie_reach_of(t[k], epsilon)
+        } else {
+            t[k]
+        }
+    }))
+}
+
+/// How far an earlier object is searched for a tie with a later object's hit at `t`: `epsilon`
+/// (world units) past it, not just the next float. A search bounded by the next float can miss
+/// the tie where the flat loop, whose bound lies further out, finds it: a hit on a face of a box
+/// of the object's BVH can come out a few floats before that box's computed entry, and an edge
+/// hit's fast f32 distance can lie a float past the exact one it gets.
+#[inline]
+fn tie_reach_of(t: f32, epsilon: f32) -> f32 {
+    (t + epsilon).max(t.next_up())
 }
 
 /// `new` in the lanes of `mask` (all bits set), `old` elsewhere.

@@ -117,8 +117,11 @@ impl Triangle {
         if det == 0.0 {
             return None;
         }
+        // The range is checked on the f32 t that is returned: a t just below `t_max` in f64 that
+        // rounds to it is no nearer than the hit that set `t_max`, which keeps a tie with it.
         let t = to_origin.dot(n) / det;
-        if !(t > t_min as f64 && t < t_max as f64) {
+        let t32 = t as f32;
+        if !(t32 > t_min && t32 < t_max) {
             return None;
         }
         let q = to_origin.cross(dir);
@@ -128,7 +131,7 @@ impl Triangle {
             return None;
         }
         Some(TriangleHit {
-            t: t as f32,
+            t: t32,
             u: u as f32,
             v: v as f32,
         })

@@ -87,13 +87,12 @@ fn bits(hit: Option<Hit>) -> Option<(u32, u32, u32, u32, u32)> {
 }
 
 proptest! {
-    // A fixed seed: with random ones, about 1 run in 30 meets a packet lane where two objects
-    // (152 and 153) are hit at the same t and the tree and the flat loop keep different ones
-    // of the pair; that tie is to be mended, and CI must not depend on luck meanwhile.
+    // Random seeds. Before boxes' far ends were widened (`BOX_FAR_MARGIN`), about 1 run in 30
+    // met a packet lane where two objects hit at the same t lay on a box's face, and the tree
+    // and the flat loop, whose searches start with different bounds, kept different ones.
     #![proptest_config(ProptestConfig {
         cases: 64,
         failure_persistence: None,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(0x7261_7374),
         ..ProptestConfig::default()
     })]
 
