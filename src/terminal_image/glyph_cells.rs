@@ -91,22 +91,19 @@ impl GlyphSet {
     /// (and so this one) also has the upper and lower half blocks, which split a cell into two
     /// rows where sextants have three.
     fn extra_layer(self) -> Option<Layer> {
-        (self == GlyphSet::Sextant).then(|| Layer {
-            grid: (2, 2),
-            patterns: vec![Pattern {
+        (self == GlyphSet::Sextant).then(|| {
+            let upper_half = Pattern {
                 mask: 0b0011,
                 glyph: '▀',
                 complement: Some('▄'),
-            }],
+            };
+            Layer::new((2, 2), vec![upper_half])
         })
     }
 
     /// Every grid the set's patterns lie on, with those patterns.
     fn layers(self) -> Vec<Layer> {
-        let mut layers = vec![Layer {
-            grid: self.grid(),
-            patterns: self.patterns(),
-        }];
+        let mut layers = vec![Layer::new(self.grid(), self.patterns())];
         layers.extend(self.extra_layer());
         layers
     }
@@ -154,9 +151,30 @@ struct Pattern {
 struct Layer {
     grid: (u32, u32),
     patterns: Vec<Pattern>,
+    /// 1/n for the part a mask covers (n its pixels), by mask over every subset of the grid's
+    /// sub-cells; 0 for the empty mask. Read by [`SubsetTables::fill`] without a branch.
+    reciprocals: Vec<f64>,
 }
 
 impl Layer {
+    fn new(grid: (u32, u32), patterns: Vec<Pattern>) -> Layer {
+        let mut layer = Layer {
+            grid,
+            patterns,
+            reciprocals: Vec::new(),
+        };
+        let by_count = layer.reciprocals();
+        layer.reciprocals = (0..1u32 << layer.sub_cells())
+            .map(|mask| by_count[mask.count_ones() as usize])
+            .collect();
+        layer
+    }
+
+    /// Sub-cells in the grid, at most 8.
+    fn sub_cells(&self) -> u32 {
+        self.grid.0 * self.grid.1
+    }
+
     /// Pixels in one sub-cell.
     fn pixels_per_sub(&self) -> u32 {
         SAMPLES_X * SAMPLES_Y / (self.grid.0 * self.grid.1)
@@ -261,26 +279,67 @@ impl FineSums {
     }
 }
 
-/// The colour sums of every subset of `subs` (index: the subset's mask), built one bit at a time
-/// into the first 2^len entries of `out`.
-fn subset_sums(subs: &[[u32; 3]], out: &mut [[u32; 3]; 256]) {
-    out[0] = [0; 3];
-    let mut filled = 1;
-    for sub in subs {
-        for i in 0..filled {
-            let base = out[i];
-            out[filled + i] = [base[0] + sub[0], base[1] + sub[1], base[2] + sub[2]];
-        }
-        filled *= 2;
-    }
+/// The gain of every part a layer's patterns can cover in one cell, by the part's mask.
+///
+/// The gain of a part is |S|² / n, S its colour sum and n its pixels: how much the part drawn in
+/// its mean colour lowers the squared error below drawing it black. The error of a split is Σ|p|²
+/// less its two parts' gains, and Σ|p|² is the same for every split of a cell, so the best split
+/// has the greatest gain `gains[mask] + gains[full ^ mask]`.
+///
+/// Invariant: a colour sum is a whole number at most 72 × 255, exact in f64 however it is added
+/// up, so each entry is bit for bit `(r * r + g * g + b * b) * (1 / n)` of the integer sums.
+/// The tables are plain arrays, one per channel, filled by loops without branches that the
+/// compiler turns into vector code: this is what makes 256 braille patterns a cell affordable.
+#[derive(Debug, Clone)]
+struct SubsetTables {
+    /// Colour sums of every subset of the sub-cells, by mask.
+    red: [f64; 256],
+    green: [f64; 256],
+    blue: [f64; 256],
+    /// The gain of every subset, by mask; the first 2^sub-cells entries are filled.
+    gains: [f64; 256],
 }
 
-/// |S|² / n: how much a part whose colours sum to `sum` lowers the squared error below that of
-/// drawing it black, given `reciprocal` = 1/n (0 for an empty part). The error of a split is
-/// Σ|p|² less the two parts' gains, and Σ|p|² is the same for every split of a cell.
-fn gain(sum: [u32; 3], reciprocal: f64) -> f64 {
-    let [r, g, b] = sum.map(f64::from);
-    (r * r + g * g + b * b) * reciprocal
+impl SubsetTables {
+    fn new() -> SubsetTables {
+        SubsetTables {
+            red: [0.0; 256],
+            green: [0.0; 256],
+            blue: [0.0; 256],
+            gains: [0.0; 256],
+        }
+    }
+
+    /// Fills the first 2^len(`subs`) entries for a cell whose sub-cells sum to `subs`, with
+    /// `reciprocals` (1/n by mask, [`Layer::reciprocals`]) of the same length.
+    fn fill(&mut self, subs: &[[u32; 3]], reciprocals: &[f64]) {
+        let len = reciprocals.len();
+        debug_assert_eq!(len, 1 << subs.len());
+        // The sums of the subsets of the first k sub-cells are the first 2^k entries; adding
+        // sub-cell k to each gives the next 2^k.
+        for (channel, table) in [&mut self.red, &mut self.green, &mut self.blue]
+            .into_iter()
+            .enumerate()
+        {
+            table[0] = 0.0;
+            for (k, sub) in subs.iter().enumerate() {
+                let (low, high) = table[..2 << k].split_at_mut(1 << k);
+                let add = f64::from(sub[channel]);
+                for (h, l) in high.iter_mut().zip(low.iter()) {
+                    *h = l + add;
+                }
+            }
+        }
+        let sums = self.red[..len]
+            .iter()
+            .zip(&self.green[..len])
+            .zip(&self.blue[..len]);
+        for ((gain, ((r, g), b)), reciprocal) in
+            self.gains[..len].iter_mut().zip(sums).zip(reciprocals)
+        {
+            *gain = (r * r + g * g + b * b) * reciprocal;
+        }
+    }
 }
 
 /// The mean colour of a part, rounded to 8-bit codes.
@@ -301,45 +360,48 @@ struct Cell {
     complement: Option<char>,
 }
 
-/// The best split so far: its gain, pattern, the two parts' colour sums and pixel counts.
-type Choice<'a> = (f64, &'a Pattern, [[u32; 3]; 2], [u32; 2]);
-
 /// The best cell for `sums` over the patterns of every layer: the one whose two parts' means
-/// leave the least squared error. `scratch` holds subset sums between calls.
-fn best_cell(sums: &FineSums, layers: &[Layer], scratch: &mut [[u32; 3]; 256]) -> Cell {
-    let mut best: Option<Choice> = None;
+/// leave the least squared error. Patterns are tried in order, and a later one replaces the best
+/// so far only when its gain is greater by more than 1e-3, so that near ties keep the earlier
+/// (simpler) pattern. `scratch` holds the subset tables between calls.
+fn best_cell(sums: &FineSums, layers: &[Layer], scratch: &mut SubsetTables) -> Cell {
+    let mut best: Option<(f64, &Layer, &Pattern)> = None;
     for layer in layers {
-        let count = 2 * layer.grid.1;
-        let subs = sums.grid(layer.grid.1);
-        subset_sums(&subs[..count as usize], scratch);
-        let total = scratch[(1usize << count) - 1];
-        let reciprocal = layer.reciprocals();
-        for pattern in &layer.patterns {
-            let inside = scratch[pattern.mask as usize];
-            let outside = [
-                total[0] - inside[0],
-                total[1] - inside[1],
-                total[2] - inside[2],
-            ];
-            let k = pattern.mask.count_ones();
-            let g = gain(inside, reciprocal[k as usize])
-                + gain(outside, reciprocal[(count - k) as usize]);
-            if best.is_none_or(|b| g > b.0 + 1e-3) {
-                let per_sub = layer.pixels_per_sub();
-                best = Some((
-                    g,
-                    pattern,
-                    [inside, outside],
-                    [k * per_sub, (count - k) * per_sub],
-                ));
-            }
+        let count = layer.sub_cells() as usize;
+        scratch.fill(&sums.grid(layer.grid.1)[..count], &layer.reciprocals);
+        let full = (1 << count) - 1;
+        let split_gain = |pattern: &Pattern| {
+            let mask = pattern.mask as usize;
+            scratch.gains[mask] + scratch.gains[full ^ mask]
+        };
+        // Skips to the next pattern that beats the threshold: the rare replacement is a
+        // branch, and the scan between two has no dependency from one pattern to the next.
+        let mut rest = &layer.patterns[..];
+        loop {
+            let threshold = best.map_or(f64::NEG_INFINITY, |b| b.0 + 1e-3);
+            let Some(next) = rest.iter().position(|p| split_gain(p) > threshold) else {
+                break;
+            };
+            best = Some((split_gain(&rest[next]), layer, &rest[next]));
+            rest = &rest[next + 1..];
         }
     }
-    let (_, pattern, [inside, outside], [n_in, n_out]) = best.expect("every set has patterns");
+    let (_, layer, pattern) = best.expect("every set has patterns");
+    // The two parts' sums and pixel counts, from the chosen layer's sub-cells.
+    let subs = sums.grid(layer.grid.1);
+    let mut parts = [[0u32; 3]; 2];
+    for (sub, colour) in subs[..layer.sub_cells() as usize].iter().enumerate() {
+        let part = &mut parts[usize::from(pattern.mask >> sub & 1 == 0)];
+        for (p, c) in part.iter_mut().zip(colour) {
+            *p += c;
+        }
+    }
+    let k = pattern.mask.count_ones();
+    let per_sub = layer.pixels_per_sub();
     Cell {
         glyph: pattern.glyph,
-        fg: mean(inside, n_in),
-        bg: mean(outside, n_out),
+        fg: mean(parts[0], k * per_sub),
+        bg: mean(parts[1], (layer.sub_cells() - k) * per_sub),
         complement: pattern.complement,
     }
 }
@@ -479,7 +541,7 @@ fn encode_row(
 ) -> String {
     let mut out = String::with_capacity(cols as usize * 12);
     let mut pen = Pen::default();
-    let mut scratch = [[0u32; 3]; 256];
+    let mut scratch = SubsetTables::new();
     for col in 0..cols {
         let cell = best_cell(&FineSums::of(image, col, row), layers, &mut scratch);
         draw(&mut out, &mut pen, cell, mode);
@@ -501,14 +563,14 @@ pub struct GlyphCell {
 #[derive(Debug, Clone)]
 pub struct CellChooser {
     layers: Vec<Layer>,
-    scratch: Box<[[u32; 3]; 256]>,
+    scratch: Box<SubsetTables>,
 }
 
 impl CellChooser {
     pub fn new(set: GlyphSet) -> CellChooser {
         CellChooser {
             layers: set.layers(),
-            scratch: Box::new([[0; 3]; 256]),
+            scratch: Box::new(SubsetTables::new()),
         }
     }
 
@@ -691,7 +753,11 @@ mod tests {
             for _ in 0..20 {
                 let image = picture(1, 1, |_, _| [next(), next(), next()]);
                 let layers = set.layers();
-                let chosen = best_cell(&FineSums::of(&image, 0, 0), &layers, &mut [[0; 3]; 256]);
+                let chosen = best_cell(
+                    &FineSums::of(&image, 0, 0),
+                    &layers,
+                    &mut SubsetTables::new(),
+                );
                 // The parts of a split: which pixels the foreground covers.
                 let covered = |rows: u32, mask: u32, i: usize| {
                     let (x, y) = (i as u32 % SAMPLES_X, i as u32 / SAMPLES_X);
@@ -739,6 +805,72 @@ mod tests {
                         assert!(chosen_error <= other + 1.0, "{set:?} {}", p.glyph);
                     }
                 }
+            }
+        }
+    }
+
+    /// The search as it was first written, one pattern at a time on integer sums: the same
+    /// rule (a later pattern wins only by more than 1e-3), so the table search must pick the
+    /// same pattern of the same layer on every cell.
+    fn plain_best(sums: &FineSums, layers: &[Layer]) -> (u32, u32) {
+        let mut best: Option<(f64, u32, u32)> = None;
+        for layer in layers {
+            let count = layer.sub_cells();
+            let subs = sums.grid(layer.grid.1);
+            let reciprocal = layer.reciprocals();
+            let sum_of = |mask: u32| {
+                let mut sum = [0u32; 3];
+                for (sub, colour) in subs[..count as usize].iter().enumerate() {
+                    if mask >> sub & 1 == 1 {
+                        (0..3).for_each(|c| sum[c] += colour[c]);
+                    }
+                }
+                sum
+            };
+            let gain = |sum: [u32; 3], r: f64| {
+                let [a, b, c] = sum.map(f64::from);
+                (a * a + b * b + c * c) * r
+            };
+            for pattern in &layer.patterns {
+                let k = pattern.mask.count_ones();
+                let outside = !pattern.mask & ((1 << count) - 1);
+                let g = gain(sum_of(pattern.mask), reciprocal[k as usize])
+                    + gain(sum_of(outside), reciprocal[(count - k) as usize]);
+                if best.is_none_or(|b| g > b.0 + 1e-3) {
+                    best = Some((g, layer.grid.1, pattern.mask));
+                }
+            }
+        }
+        best.map(|(_, rows, mask)| (rows, mask)).unwrap()
+    }
+
+    #[test]
+    fn the_table_search_picks_what_the_plain_search_picks() {
+        let mut seed = 11u32;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_103_515_245).wrapping_add(12345);
+            seed >> 16
+        };
+        for set in GlyphSet::ALL {
+            let layers = set.layers();
+            let mut tables = SubsetTables::new();
+            // Noise, two-colour cells with noise, and flat cells (ties everywhere).
+            for case in 0..600 {
+                let (a, b) = ([0u8, 40, 200], [250u8, 120, 10]);
+                let image = picture(1, 1, |x, y| match case % 3 {
+                    0 => [next() as u8, next() as u8, next() as u8],
+                    1 => {
+                        let c = if (x * 7 + y * 3 + case) % 5 < 2 { a } else { b };
+                        c.map(|v| v.saturating_add((next() % 9) as u8))
+                    }
+                    _ => [(case % 256) as u8; 3],
+                });
+                let sums = FineSums::of(&image, 0, 0);
+                let cell = best_cell(&sums, &layers, &mut tables);
+                let (rows, mask) = plain_best(&sums, &layers);
+                let layer = layers.iter().find(|l| l.grid.1 == rows).unwrap();
+                let pattern = layer.patterns.iter().find(|p| p.mask == mask).unwrap();
+                assert_eq!(cell.glyph, pattern.glyph, "{set:?} case {case}");
             }
         }
     }
