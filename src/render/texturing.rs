@@ -18,6 +18,7 @@ use glam::{Vec2, Vec3, Vec4};
 use crate::mesh::Mesh;
 use crate::mesh::texture::{AlphaMode, TextureBinding};
 use crate::render::camera::View;
+use crate::render::simd::{Lanes, log2};
 use crate::world::{World, WorldObject};
 
 /// Steepest incidence the footprint is widened for: at grazing angles beyond it (cosine below
@@ -187,6 +188,40 @@ impl<'a> ObjectTextures<'a> {
         self.sample_binding(binding, uv, density, distance, cos)
     }
 
+    /// The texels of level 0 of object `object`'s texture (0 when untextured), as an `f32`.
+    #[inline]
+    pub fn texel_count(&self, object: usize) -> f32 {
+        match self.textured[object] {
+            Some((binding, _)) => {
+                let (w, h) = binding.texture.size();
+                w as f32 * h as f32
+            }
+            None => 0.0,
+        }
+    }
+
+    /// The linear RGBA colour of object `object` (textured) at `uv` at level of detail `lod`
+    /// ([`ObjectTextures::level_of_detail`]); white on an untextured object.
+    #[inline]
+    pub fn sample_at_level(&self, object: usize, uv: Vec2, lod: f32) -> Vec4 {
+        match self.textured[object] {
+            Some((binding, _)) => binding.sampler.sample(&binding.texture, uv, lod),
+            None => Vec4::ONE,
+        }
+    }
+
+    /// The level of detail, per lane, of a texture of `texels` texels at level 0 on a triangle
+    /// of texel density `density`, seen at path length `distance` along a ray whose direction
+    /// makes cosine `cos` with the surface normal: half the base-2 logarithm of the texels the
+    /// footprint covers. One lane (the ray tracer's) gives the bits of eight (the Z-buffer's).
+    #[inline(always)]
+    pub fn level_of_detail<L: Lanes>(&self, texels: L, density: L, distance: L, cos: L) -> L {
+        let width = L::splat(self.base) + L::splat(self.spread) * distance;
+        let slant = cos.max(-cos).max(L::splat(MIN_COSINE));
+        let covered = texels * density * width * width / slant;
+        L::splat(0.5) * log2(covered)
+    }
+
     /// [`ObjectTextures::sample`] of `binding`.
     #[inline]
     fn sample_binding(
@@ -199,9 +234,7 @@ impl<'a> ObjectTextures<'a> {
     ) -> Vec4 {
         let texture = &binding.texture;
         let (w, h) = texture.size();
-        let width = self.base + self.spread * distance;
-        let texels = (w as f32 * h as f32) * density * width * width / cos.abs().max(MIN_COSINE);
-        let lod = 0.5 * texels.log2();
+        let lod = self.level_of_detail(w as f32 * h as f32, density, distance, cos);
         binding.sampler.sample(texture, uv, lod)
     }
 }

@@ -1,6 +1,8 @@
 //! The texture colour of Z-buffer fragments: the coordinates interpolated, the level from the
 //! footprint of the pixel's ray at its depth (the ray tracer's formula, see
 //! [`crate::render::texturing`]), so Phong and ray tracing read the same texels.
+//!
+//! The footprint and level are worked out in lanes; the texels are then read lane by lane.
 
 use glam::Vec3;
 
@@ -19,29 +21,30 @@ pub fn fragment_texels<L: Lanes8, const K: usize>(
     normal: V3<L>,
     uvd: V3<L>,
 ) -> V3<L> {
-    let x = fragments.columns() + L::splat(0.5);
+    let objects = fragments.object.map(|o| o as usize);
+    if !objects.iter().any(|&o| textures.is_textured(o)) {
+        return V3::splat(Vec3::ONE);
+    }
     // Each fragment's ray: through its pixel from the eye, or along the view direction for
     // every pixel of an orthographic view.
     let rays = if view.orthographic {
-        [view.forward; WIDTH]
+        V3::splat(view.forward)
     } else {
+        let x = fragments.columns() + L::splat(0.5);
         view.pixel_direction(x, L::splat(fragments.y as f32 + 0.5))
-            .to_vec3s()
     };
-    let depth = fragments.depth.to_array();
-    let normals = normal.normalize_or_zero().to_vec3s();
-    let uvd = uvd.to_vec3s();
-    let texels: [Vec3; WIDTH] = std::array::from_fn(|k| {
-        let object = fragments.object[k] as usize;
-        if !textures.is_textured(object) {
-            return Vec3::ONE;
-        }
-        // The ray's length per unit of depth turns depth into distance along it.
-        let length = rays[k].length();
-        let (distance, cos) = (depth[k] * length, normals[k].dot(rays[k] / length));
-        textures
-            .sample(object, uvd[k].truncate(), uvd[k].z, distance, cos)
-            .truncate()
+    // The ray's length per unit of depth turns depth into distance along it.
+    let length = rays.length_squared().sqrt();
+    let distance = fragments.depth * length;
+    let cos = normal.normalize_or_zero().dot(rays) / length;
+    let texels = L::from_array(objects.map(|o| textures.texel_count(o)));
+    let lod = textures
+        .level_of_detail(texels, uvd.z, distance, cos)
+        .to_array();
+    let (u, v) = (uvd.x.to_array(), uvd.y.to_array());
+    let colors: [Vec3; WIDTH] = std::array::from_fn(|k| {
+        let uv = glam::Vec2::new(u[k], v[k]);
+        textures.sample_at_level(objects[k], uv, lod[k]).truncate()
     });
-    V3::gather(&texels)
+    V3::gather(&colors)
 }

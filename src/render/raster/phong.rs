@@ -161,14 +161,37 @@ impl Shader<3> for PhongShader<'_> {
     #[inline(always)]
     fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 3>, row: &mut [Vec3]) {
         let mut material = self.materials.of_lanes(&fragments.object);
-        let tinted = material.color.mul_elements(fragments.varying[1]);
-        let color = self
-            .colored
-            .select(&fragments.object, tinted, material.color);
-        let (normal, uvd) = (fragments.varying[0], fragments.varying[2]);
-        let texels = fragment_texels(&self.textures, self.view, fragments, normal, uvd);
-        material.color = color.mul_elements(texels);
+        material.color = self.textured_albedo(fragments, material.color);
         self.light_fragments(fragments, &material, row);
+    }
+
+    const SHADES_TWO: bool = true;
+
+    #[inline(always)]
+    fn shade_two<L: Lanes8>(
+        &self,
+        low: &Fragments<L, 3>,
+        high: &Fragments<L, 3>,
+        row: &mut [Vec3],
+    ) {
+        debug_assert_eq!(low.y, high.y);
+        let mut material = self.materials.of_pair::<L>(&low.object, &high.object);
+        let (low_color, high_color) = V3::halves(material.color);
+        // Methods, not closures: a closure is not inlined into the caller's AVX context.
+        material.color = V3::pair(
+            self.textured_albedo(low, low_color),
+            self.textured_albedo(high, high_color),
+        );
+        let color = self.light(
+            L::pair(low.columns(), high.columns()),
+            low.y,
+            L::pair(low.depth, high.depth),
+            V3::pair(low.varying[0], high.varying[0]),
+            &material,
+        );
+        let (low_color, high_color) = V3::halves(color);
+        low.write(low_color, row);
+        high.write(high_color, row);
     }
 }
 
@@ -200,6 +223,19 @@ impl<'a> PhongShader<'a> {
             colored: ColoredObjects::new(world),
             textures: ObjectTextures::new(world, view),
         }
+    }
+
+    /// The albedo of `fragments` whose material colours are `color`: times the interpolated
+    /// vertex colour (the second varying) in the lanes whose object has colours, then times the
+    /// texture colour (from the normal, the first varying, and the texture coordinates and
+    /// density, the third).
+    #[inline(always)]
+    fn textured_albedo<L: Lanes8>(&self, fragments: &Fragments<L, 3>, color: V3<L>) -> V3<L> {
+        let tinted = color.mul_elements(fragments.varying[1]);
+        let color = self.colored.select(&fragments.object, tinted, color);
+        let (normal, uvd) = (fragments.varying[0], fragments.varying[2]);
+        let texels = fragment_texels(&self.textures, self.view, fragments, normal, uvd);
+        color.mul_elements(texels)
     }
 
     /// The albedo of `fragments` whose material colours are `color`: times the interpolated

@@ -432,7 +432,7 @@ fn phong_lights_pairs_of_batches_as_it_lights_each_alone() {
     use crate::render::cpu::{AVX2_AT_MOST, BASELINE_ONLY, BUILD_CHOICE};
     use std::sync::atomic::Ordering;
     let _choice = BUILD_CHOICE.lock().unwrap_or_else(|e| e.into_inner());
-    let scene = scene(
+    let spheres = scene(
         r#"
 camera = { position = [0.4, 0.3, 2.6], target = [0.0, 0.0, 0.0], fov = 45.0 }
 light = [{ position = [3.0, 4.0, 5.0] }, { position = [-2.0, 1.0, 3.0], intensity = 0.5 }]
@@ -443,32 +443,46 @@ object = [
 ]
 "#,
     );
-    let world = world(&scene);
-    let view = View::new(&scene.camera, 211, 97);
-    let progress = Progress::new();
-    let image = |render: Render| {
-        let mut out = vec![Vec3::NAN; (view.width * view.height) as usize];
-        render(
-            &mut RasterScratch::default(),
-            &world,
-            &view,
-            &progress,
-            &mut out,
-        )
-        .expect("render");
-        out.iter()
-            .map(|c| c.to_array().map(f32::to_bits))
-            .collect::<Vec<_>>()
-    };
-    for (build, flag) in [
-        ("widest", None),
-        ("AVX2", Some(&AVX2_AT_MOST)),
-        ("baseline", Some(&BASELINE_ONLY)),
-    ] {
-        flag.inspect(|f| f.store(true, Ordering::Relaxed));
-        let (paired, alone) = (image(render_phong), image(render_phong_unpaired));
-        flag.inspect(|f| f.store(false, Ordering::Relaxed));
-        let differing = paired.iter().zip(&alone).filter(|(a, b)| a != b).count();
-        assert_eq!(differing, 0, "{build}: {differing} pixels differ");
+    // Textured (the Duck, the third varying) beside an untextured sphere, so that batches
+    // mix textured and untextured lanes.
+    let duck = scene(
+        r#"
+camera = { position = [1.2, 1.0, 3.0], target = [0.0, 0.0, 0.0], fov = 40.0 }
+light = [{ position = [2.0, 3.0, 4.0] }]
+object = [
+    { type = "mesh", path = "../shared/models/gltf/Duck.glb" },
+    { type = "icosahedron", center = [0.6, -0.4, 0.3], radius = 0.4, subdivisions = 3 },
+]
+"#,
+    );
+    for (name, scene) in [("spheres", spheres), ("textured Duck", duck)] {
+        let world = world(&scene);
+        let view = View::new(&scene.camera, 211, 97);
+        let progress = Progress::new();
+        let image = |render: Render| {
+            let mut out = vec![Vec3::NAN; (view.width * view.height) as usize];
+            render(
+                &mut RasterScratch::default(),
+                &world,
+                &view,
+                &progress,
+                &mut out,
+            )
+            .expect("render");
+            out.iter()
+                .map(|c| c.to_array().map(f32::to_bits))
+                .collect::<Vec<_>>()
+        };
+        for (build, flag) in [
+            ("widest", None),
+            ("AVX2", Some(&AVX2_AT_MOST)),
+            ("baseline", Some(&BASELINE_ONLY)),
+        ] {
+            flag.inspect(|f| f.store(true, Ordering::Relaxed));
+            let (paired, alone) = (image(render_phong), image(render_phong_unpaired));
+            flag.inspect(|f| f.store(false, Ordering::Relaxed));
+            let differing = paired.iter().zip(&alone).filter(|(a, b)| a != b).count();
+            assert_eq!(differing, 0, "{name}, {build}: {differing} pixels differ");
+        }
     }
 }

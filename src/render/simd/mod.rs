@@ -22,4 +22,4 @@ pub(crate) use avx::run_on_best_lanes;
 pub(crate) fn run_on_best_lanes<J: LanesJob>(job: J) -> J::Output {
     job.run::<F32x8>()
 }
-pub(crate) use pow::pow;
+pub(crate) use pow::{log2, pow};
