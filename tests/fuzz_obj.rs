@@ -11,7 +11,7 @@ mod common;
 use std::path::Path;
 
 use proptest::prelude::*;
-use rastray::mesh::{load_obj, tessellate};
+use rastray::mesh::{load_obj, read_obj, read_obj_in_blocks, tessellate};
 use rastray::scene::limits::COORDINATE;
 use rastray::scene::{Object, Shape};
 
@@ -166,6 +166,21 @@ proptest! {
                 prop_assert!(mesh.surface_area().is_finite());
             }
         }
+    }
+
+    /// The file read in pieces of a few bytes (statements fall across blocks and pieces, read
+    /// on several threads and joined) gives what it gives read whole, or the same refusal.
+    #[test]
+    fn obj_files_read_in_small_pieces_read_as_whole(text in file(), block in 1usize..64) {
+        let path = common::scratch().join("pieces.obj");
+        std::fs::write(&path, &text).unwrap();
+        let whole = read_obj_in_blocks(&path, 1 << 30);
+        match (read_obj_in_blocks(&path, block), whole) {
+            (Ok(pieces), Ok(whole)) => prop_assert_eq!(pieces, whole),
+            (Err(a), Err(b)) => prop_assert_eq!(a.to_string(), b.to_string()),
+            (a, b) => prop_assert!(false, "pieces {:?}, whole {:?}", a.map(drop), b.map(drop)),
+        }
+        prop_assert_eq!(read_obj(&path).map_err(|e| e.to_string()), read_obj_in_blocks(&path, 1 << 30).map_err(|e| e.to_string()));
     }
 }
 

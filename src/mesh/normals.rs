@@ -3,6 +3,7 @@
 use std::collections::HashMap;
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use super::face_list::Mesh;
 
@@ -52,10 +53,10 @@ pub fn with_colors_and_normals(
         return flat_normals(positions, triangles, colors);
     }
     let weighted: Vec<Vec3> = triangles
-        .iter()
+        .par_iter()
         .map(|&t| area_weighted_normal(positions, t))
         .collect();
-    let unit: Vec<Vec3> = weighted.iter().map(|&n| unit_or_zero(n)).collect();
+    let unit: Vec<Vec3> = weighted.par_iter().map(|&n| unit_or_zero(n)).collect();
     smooth_normals(positions, triangles, colors, &weighted, &unit)
 }
 
@@ -156,57 +157,82 @@ fn smooth_normals(
     let mut next_made: Vec<u32> = Vec::with_capacity(positions.len());
     // Points met by more than EXACT_DEGREE faces, summarised once each (see `Crowd`).
     let mut crowds: HashMap<usize, Crowd> = HashMap::new();
-    for (t, tri) in triangles.iter().enumerate() {
-        let mut out = [0u32; 3];
-        for (corner, &v) in tri.iter().enumerate() {
-            let p = point(v);
-            let around = &faces_of[start[p] as usize..start[p + 1] as usize];
-            let sum = if around.len() <= EXACT_DEGREE {
-                let mut sum = Vec3::ZERO;
-                for &g in around {
-                    if unit[t] == Vec3::ZERO || unit[g as usize].dot(unit[t]) >= cos_crease {
-                        sum += weighted[g as usize];
+    let around = |p: usize| &faces_of[start[p] as usize..start[p + 1] as usize];
+    // A corner's normal from the faces around its point, when they are few (each corner on its
+    // own: the corners of a run of triangles are computed on all cores, then joined in order).
+    let exact = |t: usize, v: u32| -> Option<Vec3> {
+        let around = around(point(v));
+        (around.len() <= EXACT_DEGREE).then(|| {
+            let mut sum = Vec3::ZERO;
+            for &g in around {
+                if unit[t] == Vec3::ZERO || unit[g as usize].dot(unit[t]) >= cos_crease {
+                    sum += weighted[g as usize];
+                }
+            }
+            corner_normal(sum, around, unit)
+        })
+    };
+    for (run, tris) in triangles.chunks(RUN).enumerate() {
+        let first = run * RUN;
+        let normals: Vec<[Option<Vec3>; 3]> = tris
+            .par_iter()
+            .enumerate()
+            .map(|(k, tri)| tri.map(|v| exact(first + k, v)))
+            .collect();
+        for (k, (tri, corner_normals)) in tris.iter().zip(normals).enumerate() {
+            let t = first + k;
+            let mut out = [0u32; 3];
+            for (corner, &v) in tri.iter().enumerate() {
+                let n = corner_normals[corner].unwrap_or_else(|| {
+                    let p = point(v);
+                    let sum = crowds
+                        .entry(p)
+                        .or_insert_with(|| Crowd::new(around(p), weighted, unit, cos_crease))
+                        .sum_for(unit[t], cos_crease);
+                    corner_normal(sum, around(p), unit)
+                });
+                let mut made = first_made[v as usize];
+                let mut last = NONE;
+                while made != NONE && mesh.normals[made as usize] != n {
+                    last = made;
+                    made = next_made[made as usize];
+                }
+                if made == NONE {
+                    made = mesh.positions.len() as u32;
+                    mesh.positions.push(positions[v as usize]);
+                    mesh.normals.push(n);
+                    if let (Some(out), Some(colors)) = (&mut mesh.colors, colors) {
+                        out.push(colors[v as usize]);
+                    }
+                    next_made.push(NONE);
+                    match last {
+                        NONE => first_made[v as usize] = made,
+                        _ => next_made[last as usize] = made,
                     }
                 }
-                sum
-            } else {
-                crowds
-                    .entry(p)
-                    .or_insert_with(|| Crowd::new(around, weighted, unit, cos_crease))
-                    .sum_for(unit[t], cos_crease)
-            };
-            let mut n = unit_or_zero(sum);
-            if n == Vec3::ZERO {
-                n = around
-                    .iter()
-                    .map(|&g| unit[g as usize])
-                    .find(|u| *u != Vec3::ZERO)
-                    .unwrap_or(Vec3::Y);
+                out[corner] = made;
             }
-            let mut made = first_made[v as usize];
-            let mut last = NONE;
-            while made != NONE && mesh.normals[made as usize] != n {
-                last = made;
-                made = next_made[made as usize];
-            }
-            if made == NONE {
-                made = mesh.positions.len() as u32;
-                mesh.positions.push(positions[v as usize]);
-                mesh.normals.push(n);
-                if let (Some(out), Some(colors)) = (&mut mesh.colors, colors) {
-                    out.push(colors[v as usize]);
-                }
-                next_made.push(NONE);
-                match last {
-                    NONE => first_made[v as usize] = made,
-                    _ => next_made[last as usize] = made,
-                }
-            }
-            out[corner] = made;
+            mesh.triangles.push(out);
         }
-        mesh.triangles.push(out);
     }
     mesh
+}
+
+/// Triangles whose corner normals are computed together, on all cores, before they are joined.
+const RUN: usize = 1 << 14;
+
+/// The unit normal of a corner whose faces around sum to `sum`; when that has no direction,
+/// the first of `around`'s faces that has one, or +Y.
+fn corner_normal(sum: Vec3, around: &[u32], unit: &[Vec3]) -> Vec3 {
+    let n = unit_or_zero(sum);
+    if n != Vec3::ZERO {
+        return n;
+    }
+    around
+        .iter()
+        .map(|&g| unit[g as usize])
+        .find(|u| *u != Vec3::ZERO)
+        .unwrap_or(Vec3::Y)
 }
 
 /// Faces around one point up to which each corner's normal is summed face by face: the work

@@ -1,9 +1,12 @@
 //! OBJ import: the statements rastray draws (`v`, `vt`, `vn`, `f`, and `usemtl` and `mtllib`
-//! for materials) read line by line as the file streams in, polygons fan-triangulated, every
-//! group merged into one face list that remembers which material each triangle uses. Nothing
-//! else of the file is kept, so loading takes about the memory of the result: 12 bytes a vertex
-//! and 12 a triangle (36 more a triangle when the file gives normals everywhere, 24 more when it
-//! gives texture coordinates everywhere, 12 more a vertex when it colours every vertex).
+//! for materials), polygons fan-triangulated, every group merged into one face list that
+//! remembers which material each triangle uses. The file is read a block of a few megabytes at
+//! a time; each block's whole lines are cut into pieces read on all cores
+//! ([`super::obj_piece`]) and joined in order, so indices, errors and materials are as one
+//! reader going line by line would find them. Nothing else of the file is kept, so loading
+//! takes about the memory of the result and a block: 12 bytes a vertex and 12 a triangle (36
+//! more a triangle when the file gives normals everywhere, 24 more when it gives texture
+//! coordinates everywhere, 12 more a vertex when it colours every vertex).
 //! [`super::obj_model`] turns the materials into parts.
 //!
 //! Vertex colours follow the common extension `v x y z r g b`: three numbers in 0..1 after the
@@ -11,17 +14,17 @@
 //! linear light. They are kept only when every vertex has one; a `v x y z w` (four numbers) has
 //! none.
 
-use std::io::{BufRead, BufReader};
+use std::io::Read;
 use std::path::Path;
 
 use glam::{Vec2, Vec3};
 
 use super::geometry::ModelGeometry;
-use super::normals::unit_or_zero;
+use rayon::prelude::*;
+
 use super::obj_error::{ObjError, ObjProblem};
-use super::srgb::srgb_to_linear;
+use super::obj_piece::{Counts, NONE, Piece, count_statements, read_piece};
 use crate::input_file::{MAX_MODEL_BYTES, open_bounded, read_bounded};
-use crate::scene::limits::COORDINATE;
 
 /// What a model file is called in refusals.
 const MODEL_FILE: &str = "a model file";
@@ -49,28 +52,58 @@ pub struct ObjRead {
     pub libraries: Vec<(usize, String)>,
 }
 
+/// Bytes of the file read at a time, then shared out among the cores in pieces of whole
+/// lines: the text in memory at once stays a few megabytes, whatever the file's size.
+const BLOCK: usize = 1 << 23;
+
+/// Fewest bytes worth a piece of its own.
+const MIN_PIECE: usize = 1 << 18;
+
 /// As [`load_obj`], keeping what the file says of materials.
 pub fn read_obj(path: &Path) -> Result<ObjRead, ObjError> {
+    read_obj_in_blocks(path, BLOCK)
+}
+
+/// [`read_obj`] reading `block` bytes at a time (tests make it small, so that statements fall
+/// across blocks and pieces).
+pub fn read_obj_in_blocks(path: &Path, block: usize) -> Result<ObjRead, ObjError> {
     let fail = |line, problem| ObjError {
         path: path.to_path_buf(),
         line,
         problem,
     };
     let io = |e| fail(None, ObjProblem::Io(e));
-    let file = open_bounded(path, MAX_MODEL_BYTES, MODEL_FILE).map_err(io)?;
-    let mut reader = BufReader::with_capacity(1 << 16, file);
+    let mut file = open_bounded(path, MAX_MODEL_BYTES, MODEL_FILE).map_err(io)?;
     let mut statements = Statements::default();
-    let mut line = Vec::new();
+    // Read text from the last whole line on, then at least `block` bytes more.
+    let mut text: Vec<u8> = Vec::with_capacity(block + 4096);
     loop {
-        line.clear();
-        if reader.read_until(b'\n', &mut line).map_err(io)? == 0 {
+        let wanted = block as u64;
+        let read = (&mut file)
+            .take(wanted)
+            .read_to_end(&mut text)
+            .map_err(io)?;
+        let end = read == 0 || file.limit() == 0;
+        // Whole lines now; a line cut by the block's end waits for the next.
+        let whole = if end {
+            text.len()
+        } else {
+            text.iter()
+                .rposition(|&b| b == b'\n')
+                .map_or(0, |at| at + 1)
+        };
+        let (lines, rest) = text.split_at(whole);
+        statements
+            .read_lines(lines, block)
+            .map_err(|(line, problem)| fail(Some(line), problem))?;
+        let rest = rest.len();
+        text.copy_within(whole.., 0);
+        text.truncate(rest);
+        if end {
             break;
         }
-        statements
-            .read(&line)
-            .map_err(|problem| fail(Some(statements.line), problem))?;
     }
-    if reader.get_ref().limit() == 0 {
+    if file.limit() == 0 {
         return Err(io(std::io::Error::new(
             std::io::ErrorKind::InvalidData,
             "the file grew past the size limit while it was read",
@@ -114,6 +147,8 @@ pub fn read_obj(path: &Path) -> Result<ObjRead, ObjError> {
 /// The geometry read so far.
 #[derive(Default)]
 struct Statements {
+    /// Lines and statements read so far.
+    counts: Counts,
     positions: Vec<Vec3>,
     /// Unit normals (zero for a zero normal), as `vn` statements give them.
     normals: Vec<Vec3>,
@@ -141,103 +176,95 @@ struct Statements {
     material: Option<u32>,
     /// The `mtllib` statements: line and the rest of the line.
     libraries: Vec<(usize, String)>,
-    /// The number of the line read last, from 1.
-    line: usize,
     /// Whether a face named a vertex before the first (index 0, or negative too far back).
     missing_vertex: bool,
-    /// The corners of the face being read: vertex, texture coordinate and normal indices, from 0.
-    corners: Vec<Corner>,
 }
-
-/// An index that names nothing.
-const NONE: u32 = u32::MAX;
-
-/// One corner of a face: vertex, texture coordinate and normal indices, from 0.
-#[derive(Debug, Clone, Copy)]
-struct Corner {
-    vertex: u32,
-    uv: Option<u32>,
-    normal: Option<u32>,
-}
-
-/// What a malformed face corner should have been.
-const CORNER_FORMS: &str = "a face corner is `v`, `v/vt`, `v//vn` or `v/vt/vn`";
 
 impl Statements {
-    /// Reads one line of the file.
-    fn read(&mut self, line: &[u8]) -> Result<(), ObjProblem> {
-        self.line += 1;
-        // A comment in another encoding is no obstacle; a number in one is no number.
-        let line = String::from_utf8_lossy(line);
-        let mut words = line.split_whitespace();
-        let keyword = words.next();
-        match keyword {
-            Some("v") => {
-                let p = three_numbers(&mut words).ok_or(ObjProblem::Malformed(
-                    "a vertex is `v x y z`, three numbers",
-                ))?;
-                let vertex = self.positions.len() + 1;
-                if let Some(&value) = p.iter().find(|&&x| !COORDINATE.accepts(x)) {
-                    return Err(if value.is_finite() {
-                        ObjProblem::VertexOutOfRange { vertex, value }
-                    } else {
-                        ObjProblem::NonFiniteVertex { vertex }
-                    });
-                }
-                self.positions.push(Vec3::from_array(p));
-                match (vertex_color(&mut words), self.vertex_without_color) {
-                    (_, true) => {}
-                    (Some(color), false) => self.colors.push(color),
-                    (None, false) => {
-                        self.vertex_without_color = true;
-                        self.colors = Vec::new();
-                    }
-                }
-            }
-            Some("vn") => {
-                let n = three_numbers(&mut words).ok_or(ObjProblem::Malformed(
-                    "a normal is `vn x y z`, three numbers",
-                ))?;
-                self.normals.push(unit_or_zero(Vec3::from_array(n)));
-            }
-            Some("vt") => {
-                let u = words.next().and_then(|w| w.parse::<f32>().ok());
-                // `vt u [v [w]]`: v defaults to 0.
-                let v = match words.next() {
-                    None => Some(0.0),
-                    Some(w) => w.parse::<f32>().ok(),
-                };
-                match (u, v) {
-                    (Some(u), Some(v)) if u.is_finite() && v.is_finite() => {
-                        self.uvs.push(Vec2::new(u, v));
-                    }
-                    _ => {
-                        return Err(ObjProblem::Malformed(
-                            "a texture coordinate is `vt u [v [w]]`, finite numbers",
-                        ));
-                    }
-                }
-            }
-            Some("f") => self.face(words)?,
-            Some(keyword @ ("usemtl" | "mtllib")) => {
-                // The name is the rest of the line: it may hold spaces.
-                let rest = line.trim_start()[keyword.len()..].trim();
-                if keyword == "mtllib" {
-                    if !rest.is_empty() {
-                        self.libraries.push((self.line, rest.to_string()));
-                    }
-                } else {
-                    self.use_material(rest);
-                }
-            }
-            // Groups, smoothing groups, points and lines: not drawn.
-            _ => {}
+    /// Reads `text` (whole lines, the next of the file) in pieces of about `block` / 8 bytes
+    /// or more, on the current rayon pool, and adds them in order. An error names its line.
+    fn read_lines(&mut self, text: &[u8], block: usize) -> Result<(), (usize, ObjProblem)> {
+        let pieces = pieces(text, (block / 8).max(MIN_PIECE.min(block)));
+        let counts: Vec<Counts> = pieces.par_iter().map(|p| count_statements(p)).collect();
+        let mut before = Vec::with_capacity(pieces.len());
+        let mut so_far = Counts {
+            triangles: 0,
+            ..self.counts
+        };
+        for c in &counts {
+            before.push(so_far);
+            so_far = so_far.then(*c);
         }
+        let read: Vec<Result<Piece, (usize, ObjProblem)>> = pieces
+            .par_iter()
+            .zip(&before)
+            .map(|(text, &before)| read_piece(text, before))
+            .collect();
+        let limit = crate::world::MAX_TRIANGLES;
+        for ((piece, text), before) in read.into_iter().zip(&pieces).zip(before) {
+            let piece = match piece {
+                Ok(piece) if (self.triangles.len() + piece.triangles.len()) as u64 <= limit => {
+                    piece
+                }
+                // Read again knowing the triangles before: the file may pass the triangle
+                // limit there, before the piece's own error or without one.
+                _ => read_piece(
+                    text,
+                    Counts {
+                        triangles: self.triangles.len(),
+                        ..before
+                    },
+                )?,
+            };
+            self.add(piece);
+        }
+        self.counts = Counts {
+            triangles: 0,
+            ..so_far
+        };
         Ok(())
     }
 
-    /// Makes `name` the material of the faces that follow (`usemtl` with no name: none).
-    fn use_material(&mut self, name: &str) {
+    /// Adds a piece read after everything so far.
+    fn add(&mut self, piece: Piece) {
+        let start = self.triangles.len();
+        self.positions.extend_from_slice(&piece.positions);
+        self.normals.extend_from_slice(&piece.normals);
+        self.uvs.extend_from_slice(&piece.uvs);
+        self.missing_vertex |= piece.missing_vertex;
+        if piece.vertex_without_color {
+            self.vertex_without_color = true;
+            self.colors = Vec::new();
+        } else if !self.vertex_without_color {
+            self.colors.extend_from_slice(&piece.colors);
+        }
+        // The triangles, with each `usemtl` where it came among them.
+        let mut from = 0;
+        for (at, name) in &piece.material_uses {
+            self.triangles
+                .extend_from_slice(&piece.triangles[from..*at]);
+            from = *at;
+            self.use_material(name, start + at);
+        }
+        self.triangles.extend_from_slice(&piece.triangles[from..]);
+        if piece.corner_without_normal {
+            self.corner_without_normal = true;
+            self.normal_corners = Vec::new();
+        } else if !self.corner_without_normal {
+            self.normal_corners.extend_from_slice(&piece.normal_corners);
+        }
+        if piece.corner_without_uv {
+            self.corner_without_uv = true;
+            self.uv_corners = Vec::new();
+        } else if !self.corner_without_uv {
+            self.uv_corners.extend_from_slice(&piece.uv_corners);
+        }
+        self.libraries.extend(piece.libraries);
+    }
+
+    /// Makes `name` the material of the faces from triangle `start` on (`usemtl` with no
+    /// name: none).
+    fn use_material(&mut self, name: &str, start: usize) {
         let material = (!name.is_empty()).then(|| {
             let next = self.material_names.len() as u32;
             *self
@@ -251,7 +278,7 @@ impl Statements {
         if material == self.material {
             return;
         }
-        let start = self.triangles.len() as u32;
+        let start = start as u32;
         if self.material_runs.is_empty() && start > 0 {
             self.material_runs.push((0, None));
         }
@@ -261,75 +288,6 @@ impl Statements {
             _ => self.material_runs.push((start, material)),
         }
         self.material = material;
-    }
-
-    /// Reads the corners of an `f` statement and fans them into triangles.
-    fn face(&mut self, words: std::str::SplitWhitespace<'_>) -> Result<(), ObjProblem> {
-        self.corners.clear();
-        for word in words {
-            let mut parts = word.split('/');
-            let vertex = parts
-                .next()
-                .and_then(|v| v.parse::<i64>().ok())
-                .ok_or(ObjProblem::Malformed(CORNER_FORMS))?;
-            // An index as written, resolved; `None` when absent, `Some(NONE)` when it names
-            // nothing read so far.
-            let mut index = |count: usize| match parts.next() {
-                Some("") | None => Ok(None),
-                Some(n) => n
-                    .parse::<i64>()
-                    .map(|n| {
-                        Some(resolve(n, count)).map(|i| if i as usize >= count { NONE } else { i })
-                    })
-                    .map_err(|_| ObjProblem::Malformed(CORNER_FORMS)),
-            };
-            // A texture coordinate the file lacks leaves the model without coordinates, as
-            // before rastray read them: such files loaded then and still do.
-            let uv = index(self.uvs.len())?.filter(|&t| t != NONE);
-            let normal = index(self.normals.len())?;
-            if normal == Some(NONE) {
-                return Err(ObjProblem::Malformed(
-                    "a face names a normal the file lacks",
-                ));
-            }
-            let vertex = resolve(vertex, self.positions.len());
-            self.missing_vertex |= vertex == NONE;
-            self.corners.push(Corner { vertex, uv, normal });
-        }
-        // A point or a line: not drawn.
-        if self.corners.len() < 3 {
-            return Ok(());
-        }
-        // Refused as soon as it shows: a model file of nothing but tiny faces must not fill
-        // memory before the world counts its triangles.
-        let limit = crate::world::MAX_TRIANGLES;
-        if (self.triangles.len() + self.corners.len() - 2) as u64 > limit {
-            return Err(ObjProblem::TooManyTriangles { limit });
-        }
-        let first = self.corners[0];
-        for pair in self.corners[1..].windows(2) {
-            let [b, c] = [pair[0], pair[1]];
-            self.triangles.push([first.vertex, b.vertex, c.vertex]);
-            match (first.normal, b.normal, c.normal) {
-                (Some(na), Some(nb), Some(nc)) if !self.corner_without_normal => {
-                    self.normal_corners.push([na, nb, nc]);
-                }
-                _ => {
-                    self.corner_without_normal = true;
-                    self.normal_corners = Vec::new();
-                }
-            }
-            match (first.uv, b.uv, c.uv) {
-                (Some(ta), Some(tb), Some(tc)) if !self.corner_without_uv => {
-                    self.uv_corners.push([ta, tb, tc]);
-                }
-                _ => {
-                    self.corner_without_uv = true;
-                    self.uv_corners = Vec::new();
-                }
-            }
-        }
-        Ok(())
     }
 
     /// The geometry: unused vertices dropped, corner normals kept when every corner has a
@@ -393,36 +351,6 @@ impl Statements {
     }
 }
 
-/// Index `i` as written (from 1, or negative back from the `count` read so far) as an index
-/// from 0; [`NONE`] when it names nothing before the end of what was read. A positive index may
-/// name a vertex the file gives later; it is checked at the end.
-fn resolve(i: i64, count: usize) -> u32 {
-    let resolved = if i < 0 { count as i64 + i } else { i - 1 };
-    u32::try_from(resolved)
-        .ok()
-        .filter(|&r| r != NONE)
-        .unwrap_or(NONE)
-}
-
-/// The vertex colour that ends a `v` statement, `r g b` after the position: exactly three
-/// finite numbers, read as sRGB in 0..1 (clamped) and decoded to linear. `None` otherwise.
-fn vertex_color(words: &mut std::str::SplitWhitespace<'_>) -> Option<Vec3> {
-    let rgb = three_numbers(words)?;
-    if words.next().is_some() || !rgb.iter().all(|c| c.is_finite()) {
-        return None;
-    }
-    Some(Vec3::from_array(rgb.map(srgb_to_linear)))
-}
-
-/// The next three words as numbers; `None` when they are fewer or not numbers.
-fn three_numbers(words: &mut std::str::SplitWhitespace<'_>) -> Option<[f32; 3]> {
-    let mut xyz = [0.0; 3];
-    for x in &mut xyz {
-        *x = words.next()?.parse().ok()?;
-    }
-    Some(xyz)
-}
-
 /// The OBJ statements of `text` as (1-based line, keyword, arguments).
 fn statements(text: &[u8]) -> impl Iterator<Item = (usize, &str, std::str::SplitWhitespace<'_>)> {
     text.split(|&b| b == b'\n')
@@ -457,4 +385,24 @@ fn missing_vertex(text: &[u8]) -> Option<(usize, i64, usize)> {
         }
     }
     None
+}
+
+/// `text` cut into pieces of whole lines of about `size` bytes or more (the last may be
+/// shorter), in order.
+fn pieces(text: &[u8], size: usize) -> Vec<&[u8]> {
+    let mut pieces = Vec::new();
+    let mut rest = text;
+    while rest.len() > size {
+        let cut = rest[size..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(rest.len(), |at| size + at + 1);
+        let (piece, after) = rest.split_at(cut);
+        pieces.push(piece);
+        rest = after;
+    }
+    if !rest.is_empty() {
+        pieces.push(rest);
+    }
+    pieces
 }

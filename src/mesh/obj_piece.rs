@@ -1,0 +1,392 @@
+//! One piece of an OBJ file (whole lines) read on its own, so that the pieces of a file can be
+//! read on several cores and joined in order ([`super::obj`] joins them). What a statement
+//! means can depend on what came before it: a negative index counts back from the vertices
+//! read so far, and a texture coordinate or normal index must name one read so far. A piece
+//! is therefore read knowing how many of each statement the pieces before it hold
+//! ([`Counts`], from [`count_statements`], a quick pass over the lines), and gives indices
+//! and line numbers for the whole file. Materials are named, not numbered, since their
+//! numbers depend on the names met before.
+//!
+//! Lines are read as bytes: a line of ASCII text is split into words without decoding it; a
+//! line with other bytes is decoded as UTF-8 (invalid bytes replaced), as every line once was,
+//! so a comment in another encoding is no obstacle and a number in one is no number.
+
+use glam::{Vec2, Vec3};
+
+use super::normals::unit_or_zero;
+use super::obj_error::ObjProblem;
+use super::srgb::srgb_to_linear;
+use crate::scene::limits::COORDINATE;
+
+/// How many lines and statements of each kind came before a piece, or lie in one.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counts {
+    pub lines: usize,
+    pub positions: usize,
+    pub uvs: usize,
+    pub normals: usize,
+    /// Triangles: known before a piece only when it is read again to find where the file
+    /// passed the triangle limit (0 otherwise: each piece then checks only its own).
+    pub triangles: usize,
+}
+
+impl Counts {
+    /// These counts followed by `more`'s (a piece's lines and statements after these).
+    pub fn then(self, more: Counts) -> Counts {
+        Counts {
+            lines: self.lines + more.lines,
+            positions: self.positions + more.positions,
+            uvs: self.uvs + more.uvs,
+            normals: self.normals + more.normals,
+            triangles: self.triangles + more.triangles,
+        }
+    }
+}
+
+/// What one piece of the file holds, with indices and lines for the whole file.
+#[derive(Debug, Default)]
+pub struct Piece {
+    pub positions: Vec<Vec3>,
+    /// Unit normals (zero for a zero normal), as `vn` statements give them.
+    pub normals: Vec<Vec3>,
+    /// The linear colour of each vertex, while every vertex of the piece so far has one.
+    pub colors: Vec<Vec3>,
+    /// Whether some vertex of the piece has no colour.
+    pub vertex_without_color: bool,
+    pub triangles: Vec<[u32; 3]>,
+    /// The normal index of each triangle corner, while every corner so far has one.
+    pub normal_corners: Vec<[u32; 3]>,
+    /// Whether some face corner of the piece has no normal.
+    pub corner_without_normal: bool,
+    /// Texture coordinates (u, v) as `vt` statements give them (OBJ's origin: bottom-left).
+    pub uvs: Vec<Vec2>,
+    /// The texture coordinate index of each triangle corner, while every corner so far has one.
+    pub uv_corners: Vec<[u32; 3]>,
+    /// Whether some face corner of the piece has no texture coordinate.
+    pub corner_without_uv: bool,
+    /// Each `usemtl`: the piece's triangles before it, and the name (empty: none).
+    pub material_uses: Vec<(usize, String)>,
+    /// Each `mtllib`: its line in the file and the rest of the line.
+    pub libraries: Vec<(usize, String)>,
+    /// Whether a face named a vertex before the first (index 0, or negative too far back).
+    pub missing_vertex: bool,
+}
+
+/// An index that names nothing.
+pub const NONE: u32 = u32::MAX;
+
+/// One corner of a face: vertex, texture coordinate and normal indices, from 0.
+#[derive(Debug, Clone, Copy)]
+struct Corner {
+    vertex: u32,
+    uv: Option<u32>,
+    normal: Option<u32>,
+}
+
+/// What a malformed face corner should have been.
+const CORNER_FORMS: &str = "a face corner is `v`, `v/vt`, `v//vn` or `v/vt/vn`";
+
+/// Whether `b` is white space as `char::is_whitespace` has it among ASCII characters.
+#[inline]
+fn is_space(b: u8) -> bool {
+    b == b' ' || (b'\t'..=b'\r').contains(&b)
+}
+
+/// The lines of `text`, each without its `\n` (a last line without one counts).
+fn lines(text: &[u8]) -> impl Iterator<Item = &[u8]> {
+    let body = text.strip_suffix(b"\n").unwrap_or(text);
+    (!text.is_empty())
+        .then(|| body.split(|&b| b == b'\n'))
+        .into_iter()
+        .flatten()
+}
+
+/// The lines and the `v`, `vt` and `vn` statements of `text` (whole lines): what a piece
+/// after it needs to know.
+pub fn count_statements(text: &[u8]) -> Counts {
+    let mut counts = Counts::default();
+    for line in lines(text) {
+        counts.lines += 1;
+        let start = line
+            .iter()
+            .position(|&b| !is_space(b))
+            .unwrap_or(line.len());
+        let word = &line[start..];
+        let end = word.iter().position(|&b| is_space(b)).unwrap_or(word.len());
+        match &word[..end] {
+            b"v" => counts.positions += 1,
+            b"vt" => counts.uvs += 1,
+            b"vn" => counts.normals += 1,
+            // A line not ASCII may begin with other white space or spell a keyword with
+            // invalid bytes around it: it is decoded as the reader decodes it.
+            _ if !line.is_ascii() => {
+                let text = String::from_utf8_lossy(line);
+                match text.split_whitespace().next() {
+                    Some("v") => counts.positions += 1,
+                    Some("vt") => counts.uvs += 1,
+                    Some("vn") => counts.normals += 1,
+                    _ => {}
+                }
+            }
+            _ => {}
+        }
+    }
+    counts
+}
+
+/// Reads `text` (whole lines), the part of the file after what `before` counts. An error
+/// gives its line in the file.
+pub fn read_piece(text: &[u8], before: Counts) -> Result<Piece, (usize, ObjProblem)> {
+    let mut reader = PieceReader {
+        piece: Piece::default(),
+        before,
+        corners: Vec::new(),
+    };
+    // ASCII (as nearly every file is): every byte a character, so lines and words split at
+    // bytes are whole characters, and the text is checked once, not line by line.
+    if text.is_ascii() {
+        let text = std::str::from_utf8(text).unwrap_or_default();
+        let body = text.strip_suffix('\n').unwrap_or(text);
+        for (n, line) in body.split('\n').enumerate().filter(|_| !text.is_empty()) {
+            let number = before.lines + n + 1;
+            reader
+                .statement(number, line, AsciiWords(line))
+                .map_err(|problem| (number, problem))?;
+        }
+        return Ok(reader.piece);
+    }
+    for (n, line) in lines(text).enumerate() {
+        let number = before.lines + n + 1;
+        let result = if line.is_ascii() {
+            let line = std::str::from_utf8(line).unwrap_or_default();
+            reader.statement(number, line, AsciiWords(line))
+        } else {
+            let line = String::from_utf8_lossy(line);
+            reader.statement(number, &line, line.split_whitespace())
+        };
+        result.map_err(|problem| (number, problem))?;
+    }
+    Ok(reader.piece)
+}
+
+/// The words of an ASCII line, split at white space as `str::split_whitespace` splits them.
+struct AsciiWords<'a>(&'a str);
+
+impl<'a> Iterator for AsciiWords<'a> {
+    type Item = &'a str;
+
+    #[inline]
+    fn next(&mut self) -> Option<&'a str> {
+        let bytes = self.0.as_bytes();
+        let start = bytes.iter().position(|&b| !is_space(b))?;
+        let end = bytes[start..]
+            .iter()
+            .position(|&b| is_space(b))
+            .map_or(bytes.len(), |e| start + e);
+        let word = self.0.get(start..end)?;
+        self.0 = self.0.get(end..).unwrap_or_default();
+        Some(word)
+    }
+}
+
+/// A piece being read.
+struct PieceReader {
+    piece: Piece,
+    before: Counts,
+    /// The corners of the face being read.
+    corners: Vec<Corner>,
+}
+
+impl PieceReader {
+    /// Reads line `number` of the file (`line`, split into `words`).
+    fn statement<'a>(
+        &mut self,
+        number: usize,
+        line: &'a str,
+        mut words: impl Iterator<Item = &'a str>,
+    ) -> Result<(), ObjProblem> {
+        let piece = &mut self.piece;
+        match words.next() {
+            Some("v") => {
+                let p = three_numbers(&mut words).ok_or(ObjProblem::Malformed(
+                    "a vertex is `v x y z`, three numbers",
+                ))?;
+                let vertex = self.before.positions + piece.positions.len() + 1;
+                if let Some(&value) = p.iter().find(|&&x| !COORDINATE.accepts(x)) {
+                    return Err(if value.is_finite() {
+                        ObjProblem::VertexOutOfRange { vertex, value }
+                    } else {
+                        ObjProblem::NonFiniteVertex { vertex }
+                    });
+                }
+                piece.positions.push(Vec3::from_array(p));
+                match (vertex_color(&mut words), piece.vertex_without_color) {
+                    (_, true) => {}
+                    (Some(color), false) => piece.colors.push(color),
+                    (None, false) => {
+                        piece.vertex_without_color = true;
+                        piece.colors = Vec::new();
+                    }
+                }
+            }
+            Some("vn") => {
+                let n = three_numbers(&mut words).ok_or(ObjProblem::Malformed(
+                    "a normal is `vn x y z`, three numbers",
+                ))?;
+                piece.normals.push(unit_or_zero(Vec3::from_array(n)));
+            }
+            Some("vt") => {
+                let u = words.next().and_then(|w| w.parse::<f32>().ok());
+                // `vt u [v [w]]`: v defaults to 0.
+                let v = match words.next() {
+                    None => Some(0.0),
+                    Some(w) => w.parse::<f32>().ok(),
+                };
+                match (u, v) {
+                    (Some(u), Some(v)) if u.is_finite() && v.is_finite() => {
+                        piece.uvs.push(Vec2::new(u, v));
+                    }
+                    _ => {
+                        return Err(ObjProblem::Malformed(
+                            "a texture coordinate is `vt u [v [w]]`, finite numbers",
+                        ));
+                    }
+                }
+            }
+            Some("f") => self.face(words)?,
+            Some(keyword @ ("usemtl" | "mtllib")) => {
+                // The name is the rest of the line: it may hold spaces.
+                let rest = line.trim_start()[keyword.len()..].trim();
+                if keyword == "mtllib" {
+                    if !rest.is_empty() {
+                        piece.libraries.push((number, rest.to_string()));
+                    }
+                } else {
+                    let start = piece.triangles.len();
+                    piece.material_uses.push((start, rest.to_string()));
+                }
+            }
+            // Groups, smoothing groups, points and lines: not drawn.
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// Reads the corners of an `f` statement and fans them into triangles.
+    fn face<'a>(&mut self, words: impl Iterator<Item = &'a str>) -> Result<(), ObjProblem> {
+        self.corners.clear();
+        let piece = &mut self.piece;
+        let uvs = self.before.uvs + piece.uvs.len();
+        let normals = self.before.normals + piece.normals.len();
+        let positions = self.before.positions + piece.positions.len();
+        for word in words {
+            let (vertex, rest) = split_slash(word);
+            let vertex = parse_index(vertex).ok_or(ObjProblem::Malformed(CORNER_FORMS))?;
+            let (uv, rest) = rest.map_or(("", None), split_slash);
+            let (normal, _) = rest.map_or(("", None), split_slash);
+            // An index as written, resolved; `None` when absent, `Some(NONE)` when it names
+            // nothing read so far.
+            let index = |word: &str, count: usize| match word {
+                "" => Ok(None),
+                n => parse_index(n)
+                    .map(|n| {
+                        Some(resolve(n, count)).map(|i| if i as usize >= count { NONE } else { i })
+                    })
+                    .ok_or(ObjProblem::Malformed(CORNER_FORMS)),
+            };
+            // A texture coordinate the file lacks leaves the model without coordinates, as
+            // before rastray read them: such files loaded then and still do.
+            let uv = index(uv, uvs)?.filter(|&t| t != NONE);
+            let normal = index(normal, normals)?;
+            if normal == Some(NONE) {
+                return Err(ObjProblem::Malformed(
+                    "a face names a normal the file lacks",
+                ));
+            }
+            let vertex = resolve(vertex, positions);
+            piece.missing_vertex |= vertex == NONE;
+            self.corners.push(Corner { vertex, uv, normal });
+        }
+        // A point or a line: not drawn.
+        if self.corners.len() < 3 {
+            return Ok(());
+        }
+        // Refused as soon as it shows: a model file of nothing but tiny faces must not fill
+        // memory before the world counts its triangles.
+        let limit = crate::world::MAX_TRIANGLES;
+        if (self.before.triangles + piece.triangles.len() + self.corners.len() - 2) as u64 > limit {
+            return Err(ObjProblem::TooManyTriangles { limit });
+        }
+        let first = self.corners[0];
+        for pair in self.corners[1..].windows(2) {
+            let [b, c] = [pair[0], pair[1]];
+            piece.triangles.push([first.vertex, b.vertex, c.vertex]);
+            match (first.normal, b.normal, c.normal) {
+                (Some(na), Some(nb), Some(nc)) if !piece.corner_without_normal => {
+                    piece.normal_corners.push([na, nb, nc]);
+                }
+                _ => {
+                    piece.corner_without_normal = true;
+                    piece.normal_corners = Vec::new();
+                }
+            }
+            match (first.uv, b.uv, c.uv) {
+                (Some(ta), Some(tb), Some(tc)) if !piece.corner_without_uv => {
+                    piece.uv_corners.push([ta, tb, tc]);
+                }
+                _ => {
+                    piece.corner_without_uv = true;
+                    piece.uv_corners = Vec::new();
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// `word` up to its first `/`, and the rest after that `/` when there is one.
+#[inline]
+fn split_slash(word: &str) -> (&str, Option<&str>) {
+    match word.as_bytes().iter().position(|&b| b == b'/') {
+        Some(at) => (&word[..at], Some(&word[at + 1..])),
+        None => (word, None),
+    }
+}
+
+/// An index as written: an optional sign and decimal digits, within `i64` (what
+/// `str::parse::<i64>` accepts).
+#[inline]
+fn parse_index(word: &str) -> Option<i64> {
+    word.parse().ok()
+}
+
+/// Index `i` as written (from 1, or negative back from the `count` read so far) as an index
+/// from 0; [`NONE`] when it names nothing before the end of what was read. A positive index may
+/// name a vertex the file gives later; it is checked at the end.
+pub fn resolve(i: i64, count: usize) -> u32 {
+    let resolved = if i < 0 { count as i64 + i } else { i - 1 };
+    u32::try_from(resolved)
+        .ok()
+        .filter(|&r| r != NONE)
+        .unwrap_or(NONE)
+}
+
+/// The vertex colour that ends a `v` statement, `r g b` after the position: exactly three
+/// finite numbers, read as sRGB in 0..1 (clamped) and decoded to linear. `None` otherwise.
+fn vertex_color<'a>(words: &mut impl Iterator<Item = &'a str>) -> Option<Vec3> {
+    let rgb = three_numbers(words)?;
+    if words.next().is_some() || !rgb.iter().all(|c| c.is_finite()) {
+        return None;
+    }
+    Some(Vec3::from_array(rgb.map(srgb_to_linear)))
+}
+
+/// The next three words as numbers; `None` when they are fewer or not numbers.
+#[inline]
+fn three_numbers<'a>(words: &mut impl Iterator<Item = &'a str>) -> Option<[f32; 3]> {
+    let mut xyz = [0.0; 3];
+    for x in &mut xyz {
+        *x = words.next()?.parse().ok()?;
+    }
+    Some(xyz)
+}
