@@ -2,7 +2,8 @@
 # Key-to-drawn-frame latency of the editor on a real mesh: opens SCENE in a detached tmux session
 # of COLSxROWS cells (its own tmux server), and for each algorithm (keys 1, 2, 3) orbits the view
 # PRESSES times with `]`, one press at a time, each after the last frame was drawn. The editor logs
-# each press's latency to RASTRAY_LATENCY_LOG (key received -> frame drawn, render, draw; ms);
+# each press's latency to RASTRAY_LATENCY_LOG (key received -> frame drawn, render, draw; ms;
+# its first line is the start-up);
 # this prints the median and 95th percentile per algorithm.
 # Usage, from the project root:
 #   scripts/editor-latency.sh [BIN] [SCENE] [PRESSES] [THREADS] [COLSxROWS]
@@ -37,6 +38,8 @@ for _ in $(seq 600); do
   tmux_ capture-pane -p -t latency | grep -q " ms " && break
   sleep 0.05
 done
+# Its first log line is the start-up, not a key.
+wait_lines 1
 echo "editor latency, key -> drawn frame (ms), $presses presses of ] per algorithm, $threads threads, terminal $size, $(basename "$scene")"
 echo "| algorithm | median | p95 | render median | draw median |"
 echo "|---|---|---|---|---|"

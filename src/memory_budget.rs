@@ -15,9 +15,10 @@ use std::sync::Arc;
 use crate::mesh::texture::Texture;
 use crate::world::World;
 
-/// The bound a load and a render keep within, bytes of peak resident memory (4.8 GB), unless
-/// the environment variable [`BOUND_VARIABLE`] sets another.
-pub const MEMORY_BOUND: u64 = 4_800_000_000;
+/// The bound a load and a render keep within, bytes of peak resident memory (6 GB, a quarter of
+/// a 24 GiB machine: room for [`MAX_TRIANGLES`], 11.3M triangles, so a 10M-triangle scan opens),
+/// unless the environment variable [`BOUND_VARIABLE`] sets another.
+pub const MEMORY_BOUND: u64 = 6_000_000_000;
 
 /// The environment variable that sets the bound instead of [`MEMORY_BOUND`]: bytes, or a
 /// number with `K`, `M` or `G` (decimal), as `RASTRAY_MEMORY_BOUND=2G`.
@@ -30,8 +31,20 @@ pub const BASE_BYTES: u64 = 120_000_000;
 /// the world's flat-shaded mesh (about 150), then the Z-buffer's screen triangle, corners and
 /// binned copies when every triangle survives culling (about 320), which is more than the ray
 /// tracer's BVH adds; and texture coordinates (48). Measured 473 untextured on glTF node trees
-/// of 2,000-triangle meshes rendered with Gouraud.
+/// of 2,000-triangle meshes rendered with Gouraud. One large mesh costs less: the 9M-triangle
+/// scan of `scripts/big-scan-ply.py` filling a 960×540 frame at 8×8 samples measured 281 flat
+/// and 209 smooth (Phong and Gouraud alike); `tests/memory_budget.rs` checks a smaller one.
 pub const BYTES_PER_TRIANGLE: u64 = 520;
+
+/// Bytes one triangle of a scan (a smooth mesh on shared vertices, about half a vertex a
+/// triangle) costs at the peak of a one-off ray-traced render, beyond the program: the world's
+/// mesh (a position and a normal a vertex, three indices: about 24), then at the end of its BVH
+/// build the BVH's triangles in leaf order (64), their mesh indices (4) and the inner nodes, as
+/// built and joined (about 2 × 12). Measured 122 on the 9M-triangle scan of
+/// `scripts/big-scan-ply.py` (1.09 GB), 119 at 10M (1.19 GB); `tests/memory_budget.rs` checks a
+/// 1.6M-triangle one (163: the program's own growth is a larger share there). The budget counts [`BYTES_PER_TRIANGLE`], which holds for every
+/// algorithm.
+pub const RAY_BYTES_PER_TRIANGLE: u64 = 150;
 
 /// Bytes one world object costs beyond its triangles: its mesh, distinct positions and bounds,
 /// the model part it came from, and the Z-buffer's setup task and projected vertices for it.
@@ -63,10 +76,26 @@ pub const BYTES_PER_STILL_PIXEL: u64 = 42;
 /// GIF quantizer's working copy).
 pub const BYTES_PER_ANIMATION_PIXEL: u64 = 32;
 
-/// Most triangles a world may hold: what the bound leaves, after the program, for triangles at
-/// their worst cost ([`BYTES_PER_TRIANGLE`]). Loaders refuse a file past it before reading its
-/// triangles; the full estimate ([`Estimate::check`]) then counts objects and textures too.
-pub const MAX_TRIANGLES: u64 = (MEMORY_BOUND - BASE_BYTES) / BYTES_PER_TRIANGLE;
+/// Most triangles a world may hold under the default bound: what [`MEMORY_BOUND`] leaves,
+/// after the program, for triangles at their worst cost ([`BYTES_PER_TRIANGLE`]). Loaders refuse
+/// a file past it before reading its triangles. A world is held to the bound in force by its
+/// full estimate ([`Estimate::check`]: triangles, objects, textures), and to
+/// [`TRIANGLE_INDEX_LIMIT`] whatever the bound.
+pub const MAX_TRIANGLES: u64 = triangles_within(MEMORY_BOUND);
+
+/// Most triangles any bound allows: the Z-buffer carries a triangle's index in 24 bits.
+pub const TRIANGLE_INDEX_LIMIT: u64 = (1 << 24) - 1;
+
+/// Most triangles `bound` bytes hold beside the program, at [`BYTES_PER_TRIANGLE`] each (and at
+/// most [`TRIANGLE_INDEX_LIMIT`]).
+pub const fn triangles_within(bound: u64) -> u64 {
+    let triangles = bound.saturating_sub(BASE_BYTES) / BYTES_PER_TRIANGLE;
+    if triangles < TRIANGLE_INDEX_LIMIT {
+        triangles
+    } else {
+        TRIANGLE_INDEX_LIMIT
+    }
+}
 
 /// The bound in force: [`BOUND_VARIABLE`] when set to a valid size, else [`MEMORY_BOUND`].
 pub fn memory_bound() -> u64 {
@@ -252,7 +281,11 @@ mod tests {
 
     #[test]
     fn the_triangle_cap_follows_from_the_bound() {
-        assert_eq!(MAX_TRIANGLES, 9_000_000);
+        // (6 GB − 0.12 GB) / 520 bytes: a 10M-triangle scan fits.
+        assert_eq!(MAX_TRIANGLES, 11_307_692);
+        assert_eq!(triangles_within(4_800_000_000), 9_000_000);
+        assert_eq!(triangles_within(100_000_000_000), TRIANGLE_INDEX_LIMIT);
+        assert_eq!(triangles_within(0), 0);
         let at_cap = Estimate {
             triangles: MAX_TRIANGLES,
             ..Estimate::default()
@@ -277,22 +310,26 @@ mod tests {
 
     #[test]
     fn objects_and_frames_count_toward_the_bound() {
-        // The node-tree GLB: 262,143 instances of a 34-triangle mesh. Baked, each instance
-        // its own object, it would pass the bound; shared, it keeps within it.
+        // The node-tree GLB: 262,143 instances of a 34-triangle mesh, against a bound of
+        // 4.8 GB (`RASTRAY_MEMORY_BOUND=4800M`). Baked, each instance its own object, it would
+        // pass the bound; shared, it keeps within it.
+        let bound = 4_800_000_000;
         let baked = Estimate {
             triangles: 262_143 * 34,
             objects: 262_143,
             ..Estimate::default()
         };
-        assert!(baked.bytes() > MEMORY_BOUND, "{}", baked.bytes());
-        // Shared, it stores 34 triangles, but the Z-buffer places all 8.9M: still past it.
+        assert!(baked.bytes() > bound, "{}", baked.bytes());
+        // Shared, it stores 34 triangles, but the Z-buffer places all 8.9M: still past it
+        // (4.84 GB), though within the default bound.
         let tree = Estimate {
             triangles: 34,
             instances: 262_143,
             placed_triangles: 262_143 * 34,
             ..Estimate::default()
         };
-        assert!(tree.bytes() > MEMORY_BOUND, "{}", tree.bytes());
+        assert!(tree.bytes() > bound, "{}", tree.bytes());
+        assert!(tree.bytes() < MEMORY_BOUND, "{}", tree.bytes());
         assert!(tree.bytes() < baked.bytes());
         // Two levels fewer, a quarter of it, keeps well within.
         let smaller = Estimate {
@@ -318,10 +355,10 @@ mod tests {
     fn frames_in_flight_fit_the_room_the_world_leaves() {
         let small = Estimate::default();
         assert_eq!(frames_in_flight(&small, 640 * 480, 2), 2);
-        // At the sample cap (8192×8192 pixels) one frame takes 1.6 GB: two of them beside a
-        // world of 1.8 GB would pass 4.8 GB.
+        // At the sample cap (8192×8192 pixels) one frame takes 2.1 GB: two of them beside a
+        // world of 2.2 GB would pass 6 GB.
         let world = Estimate {
-            triangles: 3_000_000,
+            triangles: 4_000_000,
             ..small
         };
         assert_eq!(frames_in_flight(&world, 8192 * 8192, 2), 1);

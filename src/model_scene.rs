@@ -61,6 +61,16 @@ pub fn scene_for_model(path: &Path, up: UpAxis) -> Result<Scene, ModelSceneError
         path: path.to_path_buf(),
         error,
     })?;
+    scene_for_loaded_model(path, &model, up)
+}
+
+/// As [`scene_for_model`], for `model`, the file at `path` already loaded (the editor keeps it
+/// for its first world, rather than reading the file twice).
+pub fn scene_for_loaded_model(
+    path: &Path,
+    model: &MeshFile,
+    up: UpAxis,
+) -> Result<Scene, ModelSceneError> {
     let (lo, hi) = model.bounds();
     let radius = (hi - lo).length() / 2.0;
     if model.triangle_count() == 0 || !radius.is_finite() || radius <= 0.0 {

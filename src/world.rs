@@ -3,7 +3,7 @@
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 use std::time::SystemTime;
 
 use rayon::prelude::*;
@@ -41,9 +41,11 @@ pub struct WorldObject {
     /// so that the scene's bounds need no pass over every vertex (the 1.31M-triangle icosphere
     /// has 3.9M vertices: 8–12 ms on one thread).
     pub extent: Option<(glam::Vec3, glam::Vec3)>,
-    /// The mesh's distinct positions, which the Z-buffer projects once each per frame; built with
-    /// the object and kept matching `mesh`.
-    pub unique: UniquePositions,
+    /// The mesh's distinct positions, which the Z-buffer projects once each per frame: built on
+    /// the Z-buffer's first use ([`WorldObject::unique`]), so a ray-traced render never holds
+    /// them; `Some(None)` when the mesh's own positions are all distinct (a smooth mesh of a
+    /// welded file), which then serve as they are.
+    unique: OnceLock<Option<UniquePositions>>,
     /// The model file's texture coordinates at each corner of each triangle (index-aligned with
     /// `mesh.triangles`), when the file gives them; read by the `uv` display mode.
     pub corner_uvs: Option<Vec<[glam::Vec2; 3]>>,
@@ -67,7 +69,7 @@ impl WorldObject {
             appearance,
             bounds: mesh.bounding_sphere(extent),
             extent,
-            unique: UniquePositions::of(&mesh),
+            unique: OnceLock::new(),
             mesh,
             material,
             corner_uvs: None,
@@ -95,10 +97,33 @@ impl WorldObject {
             appearance,
             bounds,
             extent,
-            unique: UniquePositions::default(),
+            unique: OnceLock::from(None),
             corner_uvs: None,
             instance: Some(instance),
         }
+    }
+
+    /// The distinct positions of `mesh` and its triangles on them, for the Z-buffer: found on
+    /// first use (a pass over every vertex), or `mesh`'s own when its positions are distinct.
+    /// Empty for an instance (the Z-buffer draws [`WorldObject::placed`] copies).
+    pub fn unique(&self) -> DistinctPositions<'_> {
+        match self.unique.get_or_init(|| distinct_unless_all(&self.mesh)) {
+            Some(unique) => DistinctPositions {
+                positions: &unique.positions,
+                triangles: &unique.triangles,
+            },
+            None => DistinctPositions {
+                positions: &self.mesh.positions,
+                triangles: &self.mesh.triangles,
+            },
+        }
+    }
+
+    /// This object, told that its mesh's positions are all distinct (so [`WorldObject::unique`]
+    /// needs no pass to find them); any two equal ones are projected twice, with the same bits.
+    fn with_distinct_positions(self) -> WorldObject {
+        let _ = self.unique.set(None);
+        self
     }
 
     /// The mesh the object's triangle indices refer to: its own (world space), or for an
@@ -167,6 +192,22 @@ impl WorldObject {
     pub fn is_textured(&self) -> bool {
         self.appearance.base_color.is_some() && self.local_mesh().uvs.is_some()
     }
+}
+
+/// A mesh's distinct positions and its triangles' corners as indices into them
+/// ([`UniquePositions`], or the mesh's own positions and triangles when they are distinct).
+#[derive(Debug, Clone, Copy)]
+pub struct DistinctPositions<'a> {
+    /// Positions, world units.
+    pub positions: &'a [Vec3],
+    /// Indices into `positions` of each mesh triangle's corners, in the mesh's order.
+    pub triangles: &'a [[u32; 3]],
+}
+
+/// `mesh`'s distinct positions, or `None` when there are as many as it has positions.
+fn distinct_unless_all(mesh: &Mesh) -> Option<UniquePositions> {
+    let unique = UniquePositions::of(mesh);
+    (unique.positions.len() < mesh.positions.len()).then_some(unique)
 }
 
 /// Everything the renderers read, in world space.
@@ -319,7 +360,7 @@ fn instances_of(
         part_appearance(object, part, tessellate_shared(object, part.geometry));
     let uvs = WorldObject::new(mesh, object.material).with_uvs_of(part.geometry);
     let shared = Arc::new(SharedMesh {
-        unique: uvs.unique,
+        unique: UniquePositions::of(&uvs.mesh),
         corner_uvs: uvs.corner_uvs,
         mesh: uvs.mesh,
     });
@@ -471,11 +512,11 @@ impl World {
                 (Shape::Mesh { .. }, None) => 0,
             })
             .sum();
-        if triangles > MAX_TRIANGLES {
-            return Err(SceneError::TooManyTriangles {
-                triangles,
-                limit: MAX_TRIANGLES,
-            });
+        // The bound in force decides by bytes (`check_budget`); past the renderers' own limit,
+        // whatever the bound, by count.
+        let limit = crate::memory_budget::TRIANGLE_INDEX_LIMIT;
+        if triangles > limit {
+            return Err(SceneError::TooManyTriangles { triangles, limit });
         }
         check_budget(scene, base_dir, &models, triangles)?;
         let built: Vec<Vec<(WorldObject, WorldObjectSource)>> = scene
@@ -496,13 +537,21 @@ impl World {
                             }
                             let mesh = tessellate_part(object, part.geometry, centre);
                             let (mesh, appearance) = part_appearance(object, part, mesh);
+                            // The file's positions are welded: a mesh with one vertex per
+                            // position (smooth, no creases or seams split) has them distinct.
+                            let welded = mesh.positions.len() == part.geometry.positions.len();
+                            let built = WorldObject::with_appearance(
+                                mesh,
+                                part_material(object, part.material),
+                                appearance,
+                            )
+                            .with_uvs_of(part.geometry);
                             vec![(
-                                WorldObject::with_appearance(
-                                    mesh,
-                                    part_material(object, part.material),
-                                    appearance,
-                                )
-                                .with_uvs_of(part.geometry),
+                                if welded {
+                                    built.with_distinct_positions()
+                                } else {
+                                    built
+                                },
                                 WorldObjectSource {
                                     object: index,
                                     part: part.label.map(str::to_string),

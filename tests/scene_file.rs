@@ -201,13 +201,14 @@ fn missing_and_malformed_obj_files_name_the_file() {
 
 #[test]
 fn a_scene_too_large_to_tessellate_is_refused_with_the_limit() {
+    // Past the Z-buffer's 24-bit triangle index, whatever the memory bound.
     let one = "[[object]]\ntype = \"box\"\nsize = [1.0, 1.0, 1.0]\nsegments = 512\n";
     let scene =
-        from_toml_str(&one.repeat(3), Path::new("huge.toml")).expect("each object is valid");
-    let error = rastray::World::build(&scene, Path::new(".")).expect_err("9.4 million triangles");
+        from_toml_str(&one.repeat(6), Path::new("huge.toml")).expect("each object is valid");
+    let error = rastray::World::build(&scene, Path::new(".")).expect_err("18.9 million triangles");
     let message = error.to_string();
     assert!(
-        message.contains("9437184") && message.contains("9000000"),
+        message.contains("18874368") && message.contains("16777215"),
         "{message}"
     );
 }

@@ -230,7 +230,7 @@ fn the_export_looks_through_the_view() {
 
 #[test]
 fn a_preview_past_the_memory_bound_is_refused_before_it_renders() {
-    // 16384×16384 pixels of frame: 11.3 GB at 42 bytes a pixel, past the 4.8 GB bound.
+    // 16384×16384 pixels of frame: 11.3 GB at 42 bytes a pixel, past the 6 GB bound.
     let (tx, rx) = channel();
     let mut worker = Worker::spawn(move |reply| {
         let _ = tx.send(reply);

@@ -27,7 +27,9 @@ use std::time::{Duration, Instant};
 use ratatui::crossterm::event::Event as TermEvent;
 use ratatui::layout::Rect;
 
+use crate::model_scene::ModelSceneError;
 use crate::scene::Scene;
+use crate::world::MeshFileCache;
 use input::action::Action;
 use persistence::autosave::Autosave;
 use persistence::recovery;
@@ -87,8 +89,10 @@ impl Editor {
         up: crate::scene::UpAxis,
         startup: color_probe::Startup,
     ) -> Result<Editor, TuiError> {
+        let started = Instant::now();
         let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
-        let mut app = load(scene_path.as_deref(), up)?
+        let mut cache = MeshFileCache::default();
+        let mut app = load(scene_path.as_deref(), up, &mut cache)?
             .with_color(startup.color)
             .with_plain_interface(no_color)
             .with_graphics(startup.graphics.clone());
@@ -114,7 +118,7 @@ impl Editor {
             input_tx.send(event).is_ok()
         })
         .map_err(TuiError::Input)?;
-        let worker = Worker::spawn(move |reply| {
+        let worker = Worker::spawn_with(cache, move |reply| {
             let _ = tx.send(Event::Render(reply));
         });
         let mut guard = TerminalGuard::enter().map_err(TuiError::TerminalSetup)?;
@@ -128,7 +132,7 @@ impl Editor {
             sent: None,
             latest: 0,
             scene: (u64::MAX, Arc::new(app.doc.scene().clone())),
-            latency: LatencyLog::from_env(),
+            latency: LatencyLog::from_env(started),
             pending: None,
             motion_frames: false,
             awaiting_pixels: false,
@@ -354,10 +358,21 @@ impl Editor {
 /// from the built-in one (written on the first save), as text editors do with a new file name.
 /// A model file (OBJ, STL, PLY, glTF; by extension or content) starts a new, unnamed scene
 /// showing it, turned so that its `up` axis is +Y.
-fn load(path: Option<&Path>, up: crate::scene::UpAxis) -> Result<App, TuiError> {
+fn load(
+    path: Option<&Path>,
+    up: crate::scene::UpAxis,
+    cache: &mut MeshFileCache,
+) -> Result<App, TuiError> {
     Ok(match path {
         Some(p) if crate::model_scene::is_model_file(p) => {
-            let scene = crate::model_scene::scene_for_model(p, up)?;
+            // Read once: the worker's first world takes the model from `cache`, under the path
+            // its scene names it by (the file's name in its folder).
+            let key = document::folder_of(p).join(p.file_name().unwrap_or_default());
+            let model = cache.get(&key).map_err(|error| ModelSceneError::Load {
+                path: p.to_path_buf(),
+                error,
+            })?;
+            let scene = crate::model_scene::scene_for_loaded_model(p, &model, up)?;
             let mut app = App::new(scene, None, document::folder_of(p));
             let file = p.file_name().unwrap_or_default().to_string_lossy();
             app.doc.name_untitled(format!("new scene of {file}"));
@@ -543,20 +558,25 @@ impl Loop {
 }
 
 /// Latency figures (key to drawn preview, render, draw; ms) appended to the file named by
-/// `RASTRAY_LATENCY_LOG`, for measuring the editor's responsiveness.
+/// `RASTRAY_LATENCY_LOG`, for measuring the editor's responsiveness. The first line is the
+/// start-up: from loading the scene or model to its first preview drawn.
 struct LatencyLog {
     file: std::fs::File,
     key_at: Option<Instant>,
 }
 
 impl LatencyLog {
-    fn from_env() -> Option<LatencyLog> {
+    /// The log, when asked for, timing the first frame from `started`.
+    fn from_env(started: Instant) -> Option<LatencyLog> {
         let path = std::env::var_os("RASTRAY_LATENCY_LOG")?;
         let file = std::fs::OpenOptions::new()
             .create(true)
             .append(true)
             .open(path)
             .ok()?;
-        Some(LatencyLog { file, key_at: None })
+        Some(LatencyLog {
+            file,
+            key_at: Some(started),
+        })
     }
 }

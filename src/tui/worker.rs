@@ -153,10 +153,18 @@ pub struct Worker {
 impl Worker {
     /// Starts the thread; `reply` is called on it for every image or failure.
     pub fn spawn(reply: impl Fn(RenderReply) + Send + 'static) -> Worker {
+        Worker::spawn_with(MeshFileCache::default(), reply)
+    }
+
+    /// As [`Worker::spawn`], with the model files already read in `cache`.
+    pub fn spawn_with(
+        cache: MeshFileCache,
+        reply: impl Fn(RenderReply) + Send + 'static,
+    ) -> Worker {
         let (tx, rx) = channel();
         std::thread::Builder::new()
             .name("rastray-preview".into())
-            .spawn(move || serve(rx, reply))
+            .spawn(move || serve(rx, cache, reply))
             .expect("the preview thread can be started");
         Worker {
             tx,
@@ -186,8 +194,7 @@ impl Worker {
 }
 
 /// The thread's loop: take the newest request, build the world if needed, render each job.
-fn serve(rx: Receiver<Request>, reply: impl Fn(RenderReply)) {
-    let mut cache = MeshFileCache::default();
+fn serve(rx: Receiver<Request>, mut cache: MeshFileCache, reply: impl Fn(RenderReply)) {
     let mut world: Option<(u64, Arc<World>, Arc<[WorldObjectSource]>)> = None;
     // The current world's counts for the memory budget, beside which each preview's frames are
     // checked before they render.

@@ -249,15 +249,17 @@ impl Geometry {
 /// of [`VERTEX_CHUNK`] vertices.
 fn project_all(projected: &mut Vec<ProjectedVertices>, world: &World, view: &View) {
     projected.resize_with(world.objects.len(), ProjectedVertices::default);
-    for (o, projected) in world.objects.iter().zip(projected.iter_mut()) {
-        projected.resize(o.unique.positions.len());
-    }
+    // In parallel: each object finds its distinct positions on the first frame.
+    projected
+        .par_iter_mut()
+        .zip(&world.objects)
+        .for_each(|(projected, o)| projected.resize(o.unique().positions.len()));
     world
         .objects
         .par_iter()
         .zip(projected.par_iter_mut())
         .flat_map(|(o, projected)| {
-            let positions = &o.unique.positions;
+            let positions = o.unique().positions;
             projected
                 .runs_mut(VERTEX_CHUNK)
                 .map(move |run| (positions, run))
@@ -274,7 +276,7 @@ impl SetupChunk {
     /// `shared` the vertex stage, it asks for the corners [`PREFETCH_AHEAD`] triangles ahead.
     #[inline(always)]
     fn set_up(&mut self, world: &World, view: &View, projected: &ProjectedVertices, shared: bool) {
-        let unique = &world.objects[self.object].unique;
+        let unique = world.objects[self.object].unique();
         self.triangles.clear();
         self.corners.clear();
         // Room for every triangle at once: growing by doubling would copy and fault in twice
@@ -299,7 +301,7 @@ impl SetupChunk {
                 setup_triangle(
                     view,
                     projected,
-                    &unique.positions,
+                    unique.positions,
                     group[lane],
                     self.object as u32,
                     (first + lane) as u32,

@@ -130,6 +130,10 @@ fn build_runs(
         let mut run = Vec::with_capacity(n.saturating_sub(1));
         let mut scratch = Scratch::new();
         let (node, depth) = build_node(prims, extent, first, depth, &mut run, &mut scratch);
+        // Leaves of several triangles leave most of that room unused: returned at once, so the
+        // runs hold what their nodes take (the 9M-triangle scan's runs took 255 MiB resident
+        // with the room, 120 MiB without, beside 106 MiB of nodes once joined).
+        run.shrink_to_fit();
         return Subtree {
             node,
             runs: vec![run],

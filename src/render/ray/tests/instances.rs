@@ -25,7 +25,7 @@ fn boxes(count: usize) -> (World, World) {
     let mut world = World::build(&scene, Path::new(".")).expect("world");
     let unit = world.objects.remove(0);
     let shared = Arc::new(SharedMesh {
-        unique: unit.unique.clone(),
+        unique: crate::mesh::UniquePositions::of(&unit.mesh),
         corner_uvs: None,
         mesh: unit.mesh.clone(),
     });
