@@ -507,12 +507,14 @@ impl Pen {
 }
 
 /// Appends `cell` to `out` in whichever of its two spellings costs fewer bytes with the pen as it
-/// is. A cell of one colour is a space on that background or a full block in that foreground; any
-/// other cell is its glyph, or its complement with the colours swapped.
+/// is. A cell of one colour (a space, or braille's blank pattern) is that blank on its background
+/// or a full block in that foreground, never braille's full pattern: its dots leave gaps where
+/// the background, which a one-colour cell does not set, would show through. Any other cell is
+/// its glyph, or its complement with the colours swapped.
 fn draw(out: &mut String, pen: &mut Pen, cell: Cell, mode: ColorMode) {
     let (fg, bg) = (Ink::new(cell.fg, mode), Ink::new(cell.bg, mode));
-    let options = if cell.glyph == ' ' {
-        [(' ', None, Some(bg)), ('█', Some(bg), None)]
+    let options = if cell.glyph == ' ' || cell.glyph == BRAILLE_BLANK {
+        [(cell.glyph, None, Some(bg)), ('█', Some(bg), None)]
     } else {
         let swapped = cell
             .complement
@@ -530,6 +532,9 @@ fn draw(out: &mut String, pen: &mut Pen, cell: Cell, mode: ColorMode) {
     pen.set(out, fg, bg);
     out.push(glyph);
 }
+
+/// Braille's pattern without dots (U+2800): a cell of its background colour alone.
+const BRAILLE_BLANK: char = '\u{2800}';
 
 /// One row of cells as text, ending with a reset and a newline.
 fn encode_row(
@@ -738,6 +743,28 @@ mod tests {
         let text = encode(&grey, 3, 1, GlyphSet::Quadrant, ColorMode::Ansi256);
         assert!(text.starts_with("\x1b[48;5;"), "{text:?}");
         assert_eq!(text.matches('\x1b').count(), 2, "{text:?}");
+    }
+
+    #[test]
+    fn a_braille_cell_of_one_colour_never_shows_braille_dots_over_another() {
+        // A yellow cell after one that sets the pen's foreground to the same yellow: the cheap
+        // spelling reuses the foreground, but braille's full pattern leaves gaps between its
+        // dots, so it must be a full block (or the blank pattern on a yellow background).
+        let yellow = [250, 210, 20];
+        // The first cell: its left column of dots yellow, its right one dark blue.
+        let image = picture(2, 1, |x, _| {
+            if (SAMPLES_X / 2..SAMPLES_X).contains(&x) {
+                [20, 30, 60]
+            } else {
+                yellow
+            }
+        });
+        let text = encode(&image, 2, 1, GlyphSet::Braille, ColorMode::Truecolor);
+        assert!(!text.contains('\u{28FF}'), "{text:?}");
+        let second = text.chars().filter(|c| !c.is_ascii()).nth(1).unwrap();
+        assert!(second == '█' || second == BRAILLE_BLANK, "{text:?}");
+        // Nothing in the output is black: no colour is left unset.
+        assert!(!text.contains(";0;0;0m"), "{text:?}");
     }
 
     #[test]
