@@ -97,6 +97,14 @@ pub const fn triangles_within(bound: u64) -> u64 {
     }
 }
 
+/// Most triangles a model file may hold under the bound in force ([`memory_bound`]): what that
+/// bound leaves beside the program at [`BYTES_PER_TRIANGLE`] each, at most
+/// [`TRIANGLE_INDEX_LIMIT`]; [`MAX_TRIANGLES`] under the default bound. Loaders refuse a file past
+/// it before reading its triangles.
+pub fn triangle_cap() -> u64 {
+    triangles_within(memory_bound())
+}
+
 /// The bound in force: [`BOUND_VARIABLE`] when set to a valid size, else [`MEMORY_BOUND`].
 pub fn memory_bound() -> u64 {
     std::env::var(BOUND_VARIABLE)

@@ -422,3 +422,53 @@ fn a_scan_renders_within_the_budgets_per_triangle_figures() {
         }
     }
 }
+
+/// A binary STL of the same triangles as [`scan_ply`] (50 bytes a triangle, its normal zero).
+fn scan_stl(cols: u32, rows: u32) -> Vec<u8> {
+    let ply = scan_ply(cols, rows);
+    let body = ply.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+    let vertices = ((cols + 1) * (rows + 1)) as usize;
+    let vertex = |i: usize| &ply[body + 12 * i..body + 12 * i + 12];
+    let faces = &ply[body + 12 * vertices..];
+    let mut out = vec![0u8; 80];
+    out.extend((2 * cols * rows).to_le_bytes());
+    for face in faces.chunks_exact(13) {
+        out.extend([0u8; 12]);
+        for corner in face[1..].chunks_exact(4) {
+            let index = i32::from_le_bytes(corner.try_into().unwrap()) as usize;
+            out.extend(vertex(index));
+        }
+        out.extend([0u8; 2]);
+    }
+    out
+}
+
+#[test]
+fn the_triangle_cap_follows_the_bound_in_force() {
+    // 80,000 triangles. Under a 160 MB bound the cap is (160 − 120) MB / 520 B = 76,923, so
+    // each loader refuses the file while reading it, naming that cap; under the default bound
+    // the same files load.
+    let dir = common::scratch().join("cap-follows-bound");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("scan.ply"), scan_ply(200, 200)).unwrap();
+    std::fs::write(dir.join("scan.stl"), scan_stl(200, 200)).unwrap();
+    let cap = rastray::memory_budget::triangles_within(160_000_000);
+    assert_eq!(cap, 76_923);
+    for model in ["scan.ply", "scan.stl"] {
+        let (refused, _) = measured(&["info", model], &dir, Some("160M"));
+        let stderr = String::from_utf8_lossy(&refused.stderr);
+        assert_eq!(refused.status.code(), Some(2), "{model}: {stderr}");
+        assert!(
+            stderr.contains(model) && stderr.contains(&format!("more than {cap} triangles")),
+            "{model}: {stderr}"
+        );
+        let (loaded, _) = measured(&["info", model], &dir, None);
+        let stdout = String::from_utf8_lossy(&loaded.stdout);
+        assert!(
+            loaded.status.success(),
+            "{model}: {}",
+            String::from_utf8_lossy(&loaded.stderr)
+        );
+        assert!(stdout.contains("triangles 80000"), "{model}: {stdout}");
+    }
+}

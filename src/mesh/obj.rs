@@ -200,7 +200,7 @@ impl Statements {
             .zip(&before)
             .map(|(text, &before)| read_piece(text, before))
             .collect();
-        let limit = crate::world::MAX_TRIANGLES;
+        let limit = crate::memory_budget::triangle_cap();
         for ((piece, text), before) in read.into_iter().zip(&pieces).zip(before) {
             let piece = match piece {
                 Ok(piece) if (self.triangles.len() + piece.triangles.len()) as u64 <= limit => {

@@ -141,6 +141,7 @@ pub fn read_piece(text: &[u8], before: Counts) -> Result<Piece, (usize, ObjProbl
         piece: Piece::default(),
         before,
         corners: Vec::new(),
+        limit: crate::memory_budget::triangle_cap(),
     };
     // ASCII (as nearly every file is): every byte a character, so lines and words split at
     // bytes are whole characters, and the text is checked once, not line by line.
@@ -195,6 +196,8 @@ struct PieceReader {
     before: Counts,
     /// The corners of the face being read.
     corners: Vec<Corner>,
+    /// Most triangles the file may hold (the bound in force's cap), read once a piece.
+    limit: u64,
 }
 
 impl PieceReader {
@@ -313,7 +316,7 @@ impl PieceReader {
         }
         // Refused as soon as it shows: a model file of nothing but tiny faces must not fill
         // memory before the world counts its triangles.
-        let limit = crate::world::MAX_TRIANGLES;
+        let limit = self.limit;
         if (self.before.triangles + piece.triangles.len() + self.corners.len() - 2) as u64 > limit {
             return Err(ObjProblem::TooManyTriangles { limit });
         }

@@ -167,9 +167,9 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
         if share && let Some(found) = shared.get(&mesh.index()) {
             for (primitive, part) in mesh.primitives().zip(found) {
                 triangles += primitive_corners(&primitive);
-                if triangles > 3 * crate::world::MAX_TRIANGLES {
+                if triangles > 3 * crate::memory_budget::triangle_cap() {
                     return Err(GltfError::TooManyTriangles {
-                        limit: crate::world::MAX_TRIANGLES,
+                        limit: crate::memory_budget::triangle_cap(),
                     });
                 }
                 if let Some(part) = *part {
@@ -195,9 +195,9 @@ pub fn load_gltf(path: &Path) -> Result<GltfModel, GltfError> {
             // make nearly that many): bound the total before anything is allocated, since a node
             // hierarchy can instance one mesh many times.
             triangles += primitive_corners(&primitive);
-            if triangles > 3 * crate::world::MAX_TRIANGLES {
+            if triangles > 3 * crate::memory_budget::triangle_cap() {
                 return Err(GltfError::TooManyTriangles {
-                    limit: crate::world::MAX_TRIANGLES,
+                    limit: crate::memory_budget::triangle_cap(),
                 });
             }
             let material = primitive.material();

@@ -33,12 +33,15 @@ use super::geometry::ModelGeometry;
 use super::gltf::ImportWarning;
 use super::model_error::{Place, grew};
 use super::texture::{Appearance, Sampler, TextureBinding, load_texture};
+use crate::memory_budget::triangle_cap;
 use crate::memory_budget::{Estimate, OverBudget};
 use crate::model_folder::{ModelFolder, ReferenceKind};
-use crate::world::MAX_TRIANGLES;
 
-/// Most vertices a PLY file may declare: three for each triangle a scene may hold.
-pub const MAX_VERTICES: u64 = 3 * MAX_TRIANGLES;
+/// Most vertices a PLY file may declare: three for each triangle the bound in force lets a
+/// scene hold ([`triangle_cap`]).
+pub fn max_vertices() -> u64 {
+    3 * triangle_cap()
+}
 
 /// A PLY file's geometry, how it was written, and the texture it names.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,8 +59,8 @@ pub struct PlyModel {
 }
 
 /// Reads the PLY file at `path`: a regular file of at most [`MAX_MODEL_BYTES`](crate::input_file::MAX_MODEL_BYTES), at most
-/// [`MAX_VERTICES`] vertices within the scene's coordinate limits and at most
-/// [`MAX_TRIANGLES`] triangles. Errors name the file and the line (header, ASCII body) or byte
+/// [`max_vertices`] vertices within the scene's coordinate limits and at most
+/// [`triangle_cap`] triangles. Errors name the file and the line (header, ASCII body) or byte
 /// offset (binary body).
 pub fn load_ply(path: &Path) -> Result<PlyModel, PlyError> {
     let fail = |(place, problem)| PlyError {
@@ -93,7 +96,7 @@ pub fn load_ply(path: &Path) -> Result<PlyModel, PlyError> {
         header.elements[face].count,
         attributes,
         face_uvs,
-        MAX_TRIANGLES,
+        triangle_cap(),
     );
     let plans: Vec<(Plan, Role)> = header
         .elements
@@ -211,12 +214,12 @@ fn vertex_element(
     let element: &Element = &header.elements[vertex];
     let (plan, attributes) =
         vertex_plan(element).ok_or((Place::Line(element.line), PlyProblem::NoPositions))?;
-    if element.count > MAX_VERTICES {
+    if element.count > max_vertices() {
         return Err((
             Place::Line(element.line),
             PlyProblem::TooManyVertices {
                 count: element.count,
-                limit: MAX_VERTICES,
+                limit: max_vertices(),
             },
         ));
     }

@@ -23,7 +23,7 @@ use super::geometry::ModelGeometry;
 use super::model_error::{Place, grew};
 use super::model_format::{binary_stl_size, is_ascii_stl};
 use super::weld::{Welder, positions_of};
-use crate::world::MAX_TRIANGLES;
+use crate::memory_budget::triangle_cap;
 
 /// How an STL file was written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -51,7 +51,7 @@ pub struct StlModel {
 }
 
 /// Reads the STL file at `path`: a regular file of at most [`MAX_MODEL_BYTES`](crate::input_file::MAX_MODEL_BYTES) holding at most
-/// [`MAX_TRIANGLES`] triangles, every coordinate within the scene's coordinate limits. Errors
+/// [`triangle_cap`] triangles, every coordinate within the scene's coordinate limits. Errors
 /// name the file and the line (ASCII) or byte offset (binary).
 pub fn load_stl(path: &Path) -> Result<StlModel, StlError> {
     let fail = |(place, problem)| StlError {
@@ -65,11 +65,11 @@ pub fn load_stl(path: &Path) -> Result<StlModel, StlError> {
     let mut triangles = Vec::new();
     let (welder, encoding) = if binary_stl_size(head) == Some(size) {
         let count = u32::from_le_bytes([head[80], head[81], head[82], head[83]]);
-        if count as u64 > MAX_TRIANGLES {
+        if count as u64 > triangle_cap() {
             return Err(fail((
                 Place::Byte(80),
                 StlProblem::TooManyTriangles {
-                    limit: MAX_TRIANGLES,
+                    limit: triangle_cap(),
                 },
             )));
         }
@@ -83,7 +83,7 @@ pub fn load_stl(path: &Path) -> Result<StlModel, StlError> {
         // About 250 bytes of text a facet.
         let mut welder = Welder::with_capacity((size / 500) as usize);
         let mut reader = BufReader::with_capacity(1 << 16, &mut source);
-        ascii::read_solids(&mut reader, &mut welder, &mut triangles, MAX_TRIANGLES)
+        ascii::read_solids(&mut reader, &mut welder, &mut triangles, triangle_cap())
             .map_err(fail)?;
         (welder, StlEncoding::Ascii)
     } else if size < 84 {
