@@ -141,16 +141,7 @@ impl Shader<2> for PhongShader<'_> {
         let mut material = self.materials.of_pair::<L>(&low.object, &high.object);
         let (low_color, high_color) = V3::halves(material.color);
         material.color = V3::pair(self.albedo(low, low_color), self.albedo(high, high_color));
-        let color = self.light(
-            L::pair(low.columns(), high.columns()),
-            low.y,
-            L::pair(low.depth, high.depth),
-            V3::pair(low.varying[0], high.varying[0]),
-            &material,
-        );
-        let (low_color, high_color) = V3::halves(color);
-        low.write(low_color, row);
-        high.write(high_color, row);
+        self.light_two(low, high, &material, row);
     }
 }
 
@@ -182,20 +173,33 @@ impl Shader<3> for PhongShader<'_> {
             self.textured_albedo(low, low_color),
             self.textured_albedo(high, high_color),
         );
+        self.light_two(low, high, &material, row);
+    }
+}
+
+impl<'a> PhongShader<'a> {
+    /// Lights two batches `low` and `high` of one row (the normal their first varying) with
+    /// `material`, both batches' lanes side by side, into `row`.
+    #[inline(always)]
+    fn light_two<L: Lanes8, const K: usize>(
+        &self,
+        low: &Fragments<L, K>,
+        high: &Fragments<L, K>,
+        material: &MaterialLanes<L::Pair>,
+        row: &mut [Vec3],
+    ) {
         let color = self.light(
             L::pair(low.columns(), high.columns()),
             low.y,
             L::pair(low.depth, high.depth),
             V3::pair(low.varying[0], high.varying[0]),
-            &material,
+            material,
         );
         let (low_color, high_color) = V3::halves(color);
         low.write(low_color, row);
         high.write(high_color, row);
     }
-}
 
-impl<'a> PhongShader<'a> {
     /// Lights `fragments` (the normal their first varying) with `material` into `row`.
     #[inline(always)]
     fn light_fragments<L: Lanes8, const K: usize>(
