@@ -154,6 +154,9 @@ struct Layer {
     /// 1/n for the part a mask covers (n its pixels), by mask over every subset of the grid's
     /// sub-cells; 0 for the empty mask. Read by [`SubsetTables::fill`] without a branch.
     reciprocals: Vec<f64>,
+    /// For a layer whose patterns are every split of its grid ([`Layer::is_complete`]): 1/n of
+    /// the part that mask `2j + 1` covers, and of the part it leaves, by `j`. Else empty.
+    split_reciprocals: (Vec<f64>, Vec<f64>),
 }
 
 impl Layer {
@@ -162,12 +165,31 @@ impl Layer {
             grid,
             patterns,
             reciprocals: Vec::new(),
+            split_reciprocals: (Vec::new(), Vec::new()),
         };
         let by_count = layer.reciprocals();
         layer.reciprocals = (0..1u32 << layer.sub_cells())
             .map(|mask| by_count[mask.count_ones() as usize])
             .collect();
+        if layer.is_complete() {
+            let full = (1usize << layer.sub_cells()) - 1;
+            let odd_masks = || (0..=full / 2).map(|j| 2 * j + 1);
+            layer.split_reciprocals = (
+                odd_masks().map(|m| layer.reciprocals[m]).collect(),
+                odd_masks().map(|m| layer.reciprocals[full ^ m]).collect(),
+            );
+        }
         layer
+    }
+
+    /// Whether the patterns are every split of the grid, one of each complementary pair, in
+    /// the order [`GlyphSet::patterns`] gives: the empty mask, then every mask with sub-cell 0
+    /// in the foreground but the full one, rising. Such a layer is searched by
+    /// [`SubsetTables::fill_splits`], over half the subsets.
+    fn is_complete(&self) -> bool {
+        let full = (1u32 << self.sub_cells()) - 1;
+        let every_split = std::iter::once(0).chain((1..full).step_by(2));
+        self.patterns.iter().map(|p| p.mask).eq(every_split)
     }
 
     /// Sub-cells in the grid, at most 8.
@@ -298,6 +320,9 @@ struct SubsetTables {
     blue: [f64; 256],
     /// The gain of every subset, by mask; the first 2^sub-cells entries are filled.
     gains: [f64; 256],
+    /// The gain of each split of a complete layer, by `j` for the split whose foreground is
+    /// mask `2j + 1` ([`SubsetTables::fill_splits`]); the first 2^(sub-cells − 1) are filled.
+    splits: [f64; 128],
 }
 
 impl SubsetTables {
@@ -307,6 +332,47 @@ impl SubsetTables {
             green: [0.0; 256],
             blue: [0.0; 256],
             gains: [0.0; 256],
+            splits: [0.0; 128],
+        }
+    }
+
+    /// Fills `splits` for a complete layer's cell whose sub-cells sum to `subs`, with the
+    /// layer's `split_reciprocals` (each of length 2^(len(`subs`) − 1)).
+    ///
+    /// Only the subsets that hold sub-cell 0 are summed: the other part of a split is the
+    /// cell's total less that sum, exact in whole numbers. Each split gain is bit for bit
+    /// `gains[mask] + gains[full ^ mask]` of [`SubsetTables::fill`], with half its work.
+    fn fill_splits(&mut self, subs: &[[u32; 3]], reciprocals: &(Vec<f64>, Vec<f64>)) {
+        let half = reciprocals.0.len();
+        debug_assert_eq!(half, 1 << (subs.len() - 1));
+        let mut total = [0.0f64; 3];
+        for (channel, table) in [&mut self.red, &mut self.green, &mut self.blue]
+            .into_iter()
+            .enumerate()
+        {
+            // Entry j holds sub-cell 0 and the sub-cells k ≥ 1 whose bit k − 1 of j is set.
+            table[0] = f64::from(subs[0][channel]);
+            for (k, sub) in subs[1..].iter().enumerate() {
+                let (low, high) = table[..2 << k].split_at_mut(1 << k);
+                let add = f64::from(sub[channel]);
+                for (h, l) in high.iter_mut().zip(low.iter()) {
+                    *h = l + add;
+                }
+            }
+            total[channel] = table[half - 1];
+        }
+        let [total_r, total_g, total_b] = total;
+        let sums = self.red[..half]
+            .iter()
+            .zip(&self.green[..half])
+            .zip(&self.blue[..half]);
+        let parts = reciprocals.0.iter().zip(&reciprocals.1);
+        for ((split, ((r, g), b)), (inside, outside)) in
+            self.splits[..half].iter_mut().zip(sums).zip(parts)
+        {
+            let (rest_r, rest_g, rest_b) = (total_r - r, total_g - g, total_b - b);
+            *split = (r * r + g * g + b * b) * inside
+                + (rest_r * rest_r + rest_g * rest_g + rest_b * rest_b) * outside;
         }
     }
 
@@ -368,6 +434,30 @@ fn best_cell(sums: &FineSums, layers: &[Layer], scratch: &mut SubsetTables) -> C
     let mut best: Option<(f64, &Layer, &Pattern)> = None;
     for layer in layers {
         let count = layer.sub_cells() as usize;
+        if !layer.split_reciprocals.0.is_empty() {
+            scratch.fill_splits(&sums.grid(layer.grid.1)[..count], &layer.split_reciprocals);
+            let half = layer.split_reciprocals.0.len();
+            // The empty pattern first: its split is the full mask's, the last entry.
+            let threshold = best.map_or(f64::NEG_INFINITY, |b| b.0 + 1e-3);
+            if scratch.splits[half - 1] > threshold {
+                best = Some((scratch.splits[half - 1], layer, &layer.patterns[0]));
+            }
+            // Then pattern 1 + j for the split of mask 2j + 1, as in the general search below.
+            let mut start = 0;
+            loop {
+                let threshold = best.map_or(f64::NEG_INFINITY, |b| b.0 + 1e-3);
+                let Some(next) = scratch.splits[start..half - 1]
+                    .iter()
+                    .position(|&gain| gain > threshold)
+                else {
+                    break;
+                };
+                let j = start + next;
+                best = Some((scratch.splits[j], layer, &layer.patterns[1 + j]));
+                start = j + 1;
+            }
+            continue;
+        }
         scratch.fill(&sums.grid(layer.grid.1)[..count], &layer.reciprocals);
         let full = (1 << count) - 1;
         let split_gain = |pattern: &Pattern| {
@@ -898,6 +988,43 @@ mod tests {
                 let layer = layers.iter().find(|l| l.grid.1 == rows).unwrap();
                 let pattern = layer.patterns.iter().find(|p| p.mask == mask).unwrap();
                 assert_eq!(cell.glyph, pattern.glyph, "{set:?} case {case}");
+            }
+        }
+    }
+
+    #[test]
+    fn quadrants_sextants_and_braille_are_searched_by_their_splits() {
+        let complete =
+            |set: GlyphSet| -> Vec<bool> { set.layers().iter().map(Layer::is_complete).collect() };
+        assert_eq!(complete(GlyphSet::HalfBlock), vec![false]);
+        assert_eq!(complete(GlyphSet::Quadrant), vec![true]);
+        assert_eq!(complete(GlyphSet::Sextant), vec![true, false]);
+        assert_eq!(complete(GlyphSet::Braille), vec![true]);
+        // Each split gain is bit for bit the sum of the two parts' gains of the full tables.
+        let mut seed = 5u32;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_103_515_245).wrapping_add(12345);
+            (seed >> 16) as u8
+        };
+        for set in [GlyphSet::Quadrant, GlyphSet::Sextant, GlyphSet::Braille] {
+            let layer = &set.layers()[0];
+            let count = layer.sub_cells() as usize;
+            let full = (1usize << count) - 1;
+            for _ in 0..50 {
+                let image = picture(1, 1, |_, _| [next(), next(), next()]);
+                let subs = FineSums::of(&image, 0, 0).grid(layer.grid.1);
+                let mut tables = SubsetTables::new();
+                tables.fill(&subs[..count], &layer.reciprocals);
+                tables.fill_splits(&subs[..count], &layer.split_reciprocals);
+                for j in 0..=full / 2 {
+                    let mask = 2 * j + 1;
+                    let expected = tables.gains[mask] + tables.gains[full ^ mask];
+                    assert_eq!(
+                        tables.splits[j].to_bits(),
+                        expected.to_bits(),
+                        "{set:?} {mask}"
+                    );
+                }
             }
         }
     }
