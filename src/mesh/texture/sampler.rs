@@ -56,6 +56,9 @@ impl Sampler {
     /// The colour of `texture` at `uv` ((0, 0) the image's top-left corner, (1, 1) its
     /// bottom-right), linear RGBA, for a pixel whose footprint spans 2^`lod` texels of level 0.
     /// A non-finite coordinate or level reads as 0.
+    ///
+    /// Inlined into its callers, so that it runs in the Z-buffer's wide-register code.
+    #[inline(always)]
     pub fn sample(&self, texture: &Texture, uv: Vec2, lod: f32) -> Vec4 {
         let uv = Vec2::new(finite_or_zero(uv.x), finite_or_zero(uv.y));
         let lod = finite_or_zero(lod);
@@ -87,7 +90,7 @@ impl Sampler {
     }
 
     /// `level` at `uv` with `filter`.
-    #[inline]
+    #[inline(always)]
     fn read_level(&self, level: &MipLevel, uv: Vec2, filter: Filter) -> Vec4 {
         match &level.texels {
             Texels::Srgb8(texels) => {
@@ -149,7 +152,7 @@ fn is_small(x: f32) -> bool {
 /// [`wrapped`] of integer texel coordinate `texel`, without its 64-bit remainder (four
 /// divisions a pixel on the Duck, whose minification reads the nearest texel of two levels)
 /// where `texel` is small: a 32-bit one, or a mask on power-of-two sizes.
-#[inline]
+#[inline(always)]
 fn wrapped_fast(texel: f32, size: u32, wrap: Wrap) -> u32 {
     if !is_small(texel) {
         return wrapped(texel, size, wrap);
@@ -167,7 +170,7 @@ fn wrapped_fast(texel: f32, size: u32, wrap: Wrap) -> u32 {
 /// The texel indices that integer texel coordinates `texel` and `texel + 1` read under `wrap`
 /// in a row of `size`: [`wrapped`] of each, with one remainder rather than two, and none on
 /// power-of-two sizes (a mask), as [`wrapped_fast`].
-#[inline]
+#[inline(always)]
 fn neighbours(texel: f32, size: u32, wrap: Wrap) -> (u32, u32) {
     if !is_small(texel) {
         return (wrapped(texel, size, wrap), wrapped(texel + 1.0, size, wrap));
