@@ -261,9 +261,9 @@ fn a_world_or_a_frame_past_the_bound_is_refused_naming_the_file() {
 #[test]
 fn textures_are_counted_from_their_headers_before_any_past_the_bound_is_decoded() {
     let dir = tempfile::tempdir().unwrap();
-    // Eight materials, each with its own 2048×2048 texture (89 MB decoded with its mip chain),
-    // on eight quads: 712 MB of textures against a bound of 400 MB, of which the program's
-    // 120 MB leaves room for three.
+    // Eight materials, each with its own 2048×2048 texture (28 MB decoded with its mip chain:
+    // the image's sRGB bytes and 16-bit levels below), on eight quads: 224 MB of textures
+    // against a bound of 200 MB, of which the program's 120 MB leaves room for two.
     let mut obj = String::from("mtllib many.mtl\nvt 0 0\nvt 1 0\nvt 1 1\n");
     let mut mtl = String::new();
     for m in 0..8 {
@@ -278,16 +278,17 @@ fn textures_are_counted_from_their_headers_before_any_past_the_bound_is_decoded(
     }
     std::fs::write(dir.path().join("many.obj"), obj).unwrap();
     std::fs::write(dir.path().join("many.mtl"), mtl).unwrap();
-    let (output, peak) = measured(&["info", "many.obj"], dir.path(), Some("400M"));
+    let (output, peak) = measured(&["info", "many.obj"], dir.path(), Some("200M"));
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(2), "{stderr}");
     assert!(
-        stderr.contains("many.obj: 8 triangles in 8 objects, 0.36 GB of textures")
-            && stderr.contains("bound is 0.40 GB"),
+        stderr.contains("many.obj: 8 triangles in 8 objects, 0.08 GB of textures")
+            && stderr.contains("bound is 0.20 GB"),
         "{stderr}"
     );
-    // Decoding all eight before counting them took the process past 0.7 GB.
-    assert!(peak < 400_000_000, "peak {peak} bytes");
+    // Decoding all eight before counting them would take the process past 0.22 GB (it took
+    // it past 0.7 GB when texels were linear `f32`).
+    assert!(peak < 200_000_000, "peak {peak} bytes");
     // With room for all eight, the same model loads.
     let (output, _) = measured(&["info", "many.obj"], dir.path(), Some("1G"));
     assert!(

@@ -265,7 +265,7 @@ fn a_rewritten_texture_is_read_again_and_redrawn() {
         let report = rastray::World::build_report(&scene, dir.path(), cache).unwrap();
         let binding = report.world.objects[0].appearance.base_color.clone();
         (
-            binding.expect("textured").texture.levels[0].texels[0],
+            binding.expect("textured").texture.levels[0].texel(0, 0),
             report.inputs,
         )
     };

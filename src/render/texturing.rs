@@ -202,7 +202,7 @@ impl<'a> ObjectTextures<'a> {
 
     /// The linear RGBA colour of object `object` (textured) at `uv` at level of detail `lod`
     /// ([`ObjectTextures::level_of_detail`]); white on an untextured object.
-    #[inline]
+    #[inline(always)]
     pub fn sample_at_level(&self, object: usize, uv: Vec2, lod: f32) -> Vec4 {
         match self.textured[object] {
             Some((binding, _)) => binding.sampler.sample(&binding.texture, uv, lod),

@@ -10,16 +10,16 @@ use super::error::TextureError;
 use super::ledger::TextureLedger;
 use super::limits::{MAX_TEXTURE_BASE_TEXELS, MAX_TEXTURE_DECLARED_TEXELS, MAX_TEXTURE_SIDE};
 use super::mip_chain::{halved, halved_with, mip_chain};
+use super::texels::{SrgbTable, Texels};
 use super::texture::{MipLevel, Texture};
-use crate::mesh::srgb_byte_to_linear;
 
 /// Decodes `bytes`, a PNG or JPEG image, into a texture named `name`, once the size its header
 /// declares is committed to `ledger`, the model's account. The colour channels are sRGB-encoded
 /// and become linear; alpha is kept as it is.
 ///
 /// Memory while decoding: the 8-bit image (4 bytes a declared texel, at most 268 MB) beside the
-/// linear base level (16 bytes a texel of at most [`MAX_TEXTURE_BASE_TEXELS`], 268 MB); the
-/// linear image at full size is never held when it is halved.
+/// base level (its copy, or 8 bytes a texel of at most [`MAX_TEXTURE_BASE_TEXELS`] when halved,
+/// 134 MB); the linear image at full size is never held when it is halved.
 pub fn decode_texture(
     bytes: &[u8],
     name: &str,
@@ -75,7 +75,7 @@ pub fn decode_texture(
         reason: e.to_string(),
     })?;
     let rgba = image.into_rgba8();
-    let base = linear_base(&rgba, MAX_TEXTURE_BASE_TEXELS);
+    let base = base_level(&rgba, MAX_TEXTURE_BASE_TEXELS);
     drop(rgba);
     Ok(Texture {
         name: name.to_string(),
@@ -84,28 +84,22 @@ pub fn decode_texture(
     })
 }
 
-/// `rgba`'s texels from sRGB to linear, as the base level: the image itself when it has at most
-/// `max_texels`, else halved until it does, where the first halving reads the 8-bit texels
-/// directly (the same sums as halving the linear image, without holding it).
-fn linear_base(rgba: &image::RgbaImage, max_texels: u64) -> MipLevel {
-    let linear = |texel: &image::Rgba<u8>| {
-        let [r, g, b, a] = texel.0;
-        [
-            srgb_byte_to_linear(r),
-            srgb_byte_to_linear(g),
-            srgb_byte_to_linear(b),
-            f32::from(a) / 255.0,
-        ]
-    };
+/// `rgba`'s texels as the base level: the image's own sRGB bytes when it has at most
+/// `max_texels`, else the image halved in linear space until it does, where the first halving
+/// reads the 8-bit texels directly (the same sums as halving the decoded image, without holding
+/// it).
+fn base_level(rgba: &image::RgbaImage, max_texels: u64) -> MipLevel {
     let (width, height) = rgba.dimensions();
     if u64::from(width) * u64::from(height) <= max_texels {
         return MipLevel {
             width,
             height,
-            texels: rgba.pixels().map(linear).collect(),
+            texels: Texels::Srgb8(rgba.pixels().map(|p| p.0).collect()),
         };
     }
-    let mut base = halved_with(width, height, |x, y| linear(rgba.get_pixel(x, y)));
+    let table = SrgbTable::get();
+    let linear = |x, y| table.decode(rgba.get_pixel(x, y).0).to_array();
+    let mut base = halved_with(width, height, linear);
     while u64::from(base.width) * u64::from(base.height) > max_texels {
         base = halved(&base);
     }
@@ -115,6 +109,7 @@ fn linear_base(rgba: &image::RgbaImage, max_texels: u64) -> MipLevel {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::srgb_byte_to_linear;
 
     /// A PNG of `width × height` opaque texels, every one `rgb`.
     fn png(width: u32, height: u32, rgb: [u8; 3]) -> Vec<u8> {
@@ -140,6 +135,8 @@ mod tests {
         assert_eq!(texture.levels.len(), 3);
         let texel = texture.levels[0].texel(3, 1);
         assert_eq!(texel, [1.0, srgb_byte_to_linear(128), 0.0, 1.0]);
+        // The image's own bytes, and 16-bit levels below.
+        assert_eq!(texture.memory_bytes(), 8 * 4 + 3 * 8);
         assert!(!texture.has_alpha());
     }
 
@@ -192,14 +189,14 @@ mod tests {
                 200,
             ])
         });
-        let full = linear_base(&image, u64::MAX);
+        let full = base_level(&image, u64::MAX);
         assert_eq!((full.width, full.height), (7, 5));
         for max_texels in [35, 34, 6, 2, 1] {
             let mut expected = full.clone();
             while u64::from(expected.width) * u64::from(expected.height) > max_texels {
                 expected = halved(&expected);
             }
-            let fused = linear_base(&image, max_texels);
+            let fused = base_level(&image, max_texels);
             assert_eq!(
                 (fused.width, fused.height),
                 (expected.width, expected.height)

@@ -1,8 +1,8 @@
-//! Colour textures of model files: a PNG or JPEG read through the model's folder, decoded from
-//! sRGB to linear with its mip chain (`texture`, `decode`, `mip_chain`, `load`), its memory committed from its header before
-//! decoding (`ledger`), sampled with
-//! wrap modes and trilinear filtering (`sampler`), and what a model part carries of them
-//! (`appearance`).
+//! Colour textures of model files: a PNG or JPEG read through the model's folder, read as linear
+//! (decoded from sRGB) with its mip chain (`texture`, `decode`, `mip_chain`, `load`), its texels
+//! held compactly (`texels`: the image's sRGB bytes, 16-bit linear for the levels below), its
+//! memory committed from its header before decoding (`ledger`), sampled with wrap modes and
+//! trilinear filtering (`sampler`), and what a model part carries of them (`appearance`).
 
 mod appearance;
 mod decode;
@@ -12,6 +12,7 @@ mod limits;
 mod load;
 mod mip_chain;
 mod sampler;
+mod texels;
 #[allow(clippy::module_inception)]
 mod texture;
 mod uv_transform;
@@ -23,5 +24,6 @@ pub use ledger::{TextureLedger, decoded_texture_bytes};
 pub use limits::{MAX_TEXTURE_BASE_TEXELS, MAX_TEXTURE_DECLARED_TEXELS, MAX_TEXTURE_SIDE};
 pub use load::load_texture;
 pub use sampler::{Filter, MipFilter, Sampler, Wrap};
+pub use texels::Texels;
 pub use texture::{MipLevel, Texture};
 pub use uv_transform::UvTransform;

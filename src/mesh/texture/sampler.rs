@@ -3,6 +3,7 @@
 
 use glam::{Vec2, Vec4};
 
+use super::texels::{SrgbTable, Texels, from_u16};
 use super::texture::{MipLevel, Texture};
 
 /// What a coordinate outside [0, 1] reads (glTF's and OpenGL's three modes).
@@ -55,6 +56,9 @@ impl Sampler {
     /// The colour of `texture` at `uv` ((0, 0) the image's top-left corner, (1, 1) its
     /// bottom-right), linear RGBA, for a pixel whose footprint spans 2^`lod` texels of level 0.
     /// A non-finite coordinate or level reads as 0.
+    ///
+    /// Inlined into its callers, so that it runs in the Z-buffer's wide-register code.
+    #[inline(always)]
     pub fn sample(&self, texture: &Texture, uv: Vec2, lod: f32) -> Vec4 {
         let uv = Vec2::new(finite_or_zero(uv.x), finite_or_zero(uv.y));
         let lod = finite_or_zero(lod);
@@ -86,14 +90,35 @@ impl Sampler {
     }
 
     /// `level` at `uv` with `filter`.
+    #[inline(always)]
     fn read_level(&self, level: &MipLevel, uv: Vec2, filter: Filter) -> Vec4 {
+        match &level.texels {
+            Texels::Srgb8(texels) => {
+                let table = SrgbTable::get();
+                self.filter_level(level, uv, filter, |i| table.decode(texels[i]))
+            }
+            Texels::Linear16(texels) => {
+                self.filter_level(level, uv, filter, |i| from_u16(texels[i]))
+            }
+        }
+    }
+
+    /// `level` at `uv` with `filter`, texel `i` (row-major) reading as `texel(i)`.
+    #[inline(always)]
+    fn filter_level(
+        &self,
+        level: &MipLevel,
+        uv: Vec2,
+        filter: Filter,
+        texel: impl Fn(usize) -> Vec4,
+    ) -> Vec4 {
         let x = uv.x * level.width as f32;
         let y = uv.y * level.height as f32;
         match filter {
             Filter::Nearest => {
                 let i = wrapped_fast(floor(x), level.width, self.wrap[0]);
                 let j = wrapped_fast(floor(y), level.height, self.wrap[1]);
-                Vec4::from_array(level.texel(i, j))
+                texel((j * level.width + i) as usize)
             }
             Filter::Linear => {
                 // Texel centres sit at half-integers.
@@ -103,7 +128,7 @@ impl Sampler {
                 let (i0, i1) = neighbours(x0, level.width, self.wrap[0]);
                 let (j0, j1) = neighbours(y0, level.height, self.wrap[1]);
                 let (row0, row1) = (j0 * level.width, j1 * level.width);
-                let t = |row: u32, i: u32| Vec4::from_array(level.texels[(row + i) as usize]);
+                let t = |row: u32, i: u32| texel((row + i) as usize);
                 let (t00, t10) = (t(row0, i0), t(row0, i1));
                 let (t01, t11) = (t(row1, i0), t(row1, i1));
                 let top = t00 + (t10 - t00) * fx;
@@ -127,7 +152,7 @@ fn is_small(x: f32) -> bool {
 /// [`wrapped`] of integer texel coordinate `texel`, without its 64-bit remainder (four
 /// divisions a pixel on the Duck, whose minification reads the nearest texel of two levels)
 /// where `texel` is small: a 32-bit one, or a mask on power-of-two sizes.
-#[inline]
+#[inline(always)]
 fn wrapped_fast(texel: f32, size: u32, wrap: Wrap) -> u32 {
     if !is_small(texel) {
         return wrapped(texel, size, wrap);
@@ -145,7 +170,7 @@ fn wrapped_fast(texel: f32, size: u32, wrap: Wrap) -> u32 {
 /// The texel indices that integer texel coordinates `texel` and `texel + 1` read under `wrap`
 /// in a row of `size`: [`wrapped`] of each, with one remainder rather than two, and none on
 /// power-of-two sizes (a mask), as [`wrapped_fast`].
-#[inline]
+#[inline(always)]
 fn neighbours(texel: f32, size: u32, wrap: Wrap) -> (u32, u32) {
     if !is_small(texel) {
         return (wrapped(texel, size, wrap), wrapped(texel + 1.0, size, wrap));
@@ -225,17 +250,23 @@ mod tests {
     use super::*;
     use crate::mesh::texture::mip_chain::mip_chain;
 
-    /// A 4×1 texture of red values 0, 1, 2, 3.
+    /// A 4×1 texture of red values 0, 1/3, 2/3, 1.
     fn ramp() -> Texture {
+        let texels = (0..4).map(|i| [i as f32 / 3.0, 0.0, 0.0, 1.0]);
         Texture {
             name: "ramp".into(),
             file_size: (4, 1),
-            levels: mip_chain(MipLevel {
-                width: 4,
-                height: 1,
-                texels: (0..4).map(|i| [i as f32, 0.0, 0.0, 1.0]).collect(),
-            }),
+            levels: mip_chain(MipLevel::linear(4, 1, texels)),
         }
+    }
+
+    /// Thirds of red in `sample` (the ramp's texel index at a texel's centre), to within the
+    /// texels' 16-bit rounding.
+    fn thirds(sample: Vec4) -> f32 {
+        let thirds = 3.0 * sample.x;
+        let nearest_hundredth = (thirds * 100.0).round() / 100.0;
+        assert!((thirds - nearest_hundredth).abs() < 1e-4, "{thirds}");
+        nearest_hundredth
     }
 
     fn nearest(wrap: Wrap) -> Sampler {
@@ -249,7 +280,7 @@ mod tests {
     #[test]
     fn wrap_modes_read_the_texels_they_name() {
         let t = ramp();
-        let red = |s: Sampler, u: f32| s.sample(&t, Vec2::new(u, 0.5), 0.0).x;
+        let red = |s: Sampler, u: f32| thirds(s.sample(&t, Vec2::new(u, 0.5), 0.0));
         // u = 1.1 is texel 4.4: repeat reads texel 0, clamp texel 3, mirror texel 3.
         assert_eq!(red(nearest(Wrap::Repeat), 1.1), 0.0);
         assert_eq!(red(nearest(Wrap::ClampToEdge), 1.1), 3.0);
@@ -268,14 +299,15 @@ mod tests {
             wrap: [Wrap::ClampToEdge; 2],
             ..Sampler::default()
         };
+        let red = |u: f32, lod: f32| thirds(s.sample(&t, Vec2::new(u, 0.5), lod));
         // Halfway between the centres of texels 1 and 2.
-        assert_eq!(s.sample(&t, Vec2::new(0.5, 0.5), 0.0).x, 1.5);
+        assert_eq!(red(0.5, 0.0), 1.5);
         // Level 1 is (0.5, 2.5). At u = 0.125, texel 0's centre, level 0 reads 0 and level 1
         // (clamped at its edge) 0.5: a level of 0.5 reads halfway.
-        assert_eq!(s.sample(&t, Vec2::new(0.125, 0.5), 1.0).x, 0.5);
-        assert_eq!(s.sample(&t, Vec2::new(0.125, 0.5), 0.5).x, 0.25);
+        assert_eq!(red(0.125, 1.0), 0.5);
+        assert_eq!(red(0.125, 0.5), 0.25);
         // The coarsest level is the mean, whatever lies beyond it.
-        assert_eq!(s.sample(&t, Vec2::new(0.9, 0.5), 40.0).x, 1.5);
+        assert_eq!(red(0.9, 40.0), 1.5);
         assert_eq!(s.sample(&t, Vec2::new(f32::NAN, 0.5), f32::NAN).x, 0.0);
     }
 

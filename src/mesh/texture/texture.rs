@@ -1,4 +1,6 @@
-//! A decoded texture: linear RGBA texels with their mip chain.
+//! A decoded texture: its texels, read as linear RGBA, with their mip chain.
+
+use super::texels::Texels;
 
 /// One level of a mip chain: `width × height` texels, rows top to bottom.
 ///
@@ -7,15 +9,26 @@
 pub struct MipLevel {
     pub width: u32,
     pub height: u32,
-    /// Linear RGB (decoded from sRGB) and alpha, each in [0, 1], row-major from the top row.
-    pub texels: Vec<[f32; 4]>,
+    /// Row-major from the top row; they read as linear RGB (decoded from sRGB) and alpha, each
+    /// in [0, 1].
+    pub texels: Texels,
 }
 
 impl MipLevel {
-    /// The texel at column `x`, row `y` (both in range).
+    /// A `width × height` level of linear RGBA `texels` (row-major from the top row), each channel
+    /// clamped to [0, 1] and kept in 16 bits.
+    pub fn linear(width: u32, height: u32, texels: impl IntoIterator<Item = [f32; 4]>) -> MipLevel {
+        MipLevel {
+            width,
+            height,
+            texels: Texels::linear(texels),
+        }
+    }
+
+    /// The texel at column `x`, row `y` (both in range), linear RGBA.
     #[inline]
     pub fn texel(&self, x: u32, y: u32) -> [f32; 4] {
-        self.texels[(y * self.width + x) as usize]
+        self.texels.get((y * self.width + x) as usize)
     }
 }
 
@@ -41,14 +54,11 @@ impl Texture {
 
     /// Whether any texel is less than fully opaque.
     pub fn has_alpha(&self) -> bool {
-        self.levels[0].texels.iter().any(|t| t[3] < 1.0)
+        self.levels[0].texels.any_translucent()
     }
 
     /// Bytes held by all levels.
     pub fn memory_bytes(&self) -> usize {
-        self.levels
-            .iter()
-            .map(|l| l.texels.len() * std::mem::size_of::<[f32; 4]>())
-            .sum()
+        self.levels.iter().map(|l| l.texels.memory_bytes()).sum()
     }
 }

@@ -2,7 +2,8 @@
 //! footprint of the pixel's ray at its depth (the ray tracer's formula, see
 //! [`crate::render::texturing`]), so Phong and ray tracing read the same texels.
 //!
-//! The footprint and level are worked out in lanes; the texels are then read lane by lane.
+//! The footprint and level are worked out in lanes; the texels are then read lane by lane, for
+//! the lanes that are pixels.
 
 use glam::Vec3;
 
@@ -42,9 +43,13 @@ pub fn fragment_texels<L: Lanes8, const K: usize>(
         .level_of_detail(texels, uvd.z, distance, cos)
         .to_array();
     let (u, v) = (uvd.x.to_array(), uvd.y.to_array());
-    let colors: [Vec3; WIDTH] = std::array::from_fn(|k| {
+    // Lanes past `count` repeat the last pixel: they take its colour without reading it again.
+    let mut colors = [Vec3::ONE; WIDTH];
+    for k in 0..fragments.count {
         let uv = glam::Vec2::new(u[k], v[k]);
-        textures.sample_at_level(objects[k], uv, lod[k]).truncate()
-    });
+        colors[k] = textures.sample_at_level(objects[k], uv, lod[k]).truncate();
+    }
+    let last = colors[fragments.count - 1];
+    colors[fragments.count..].fill(last);
     V3::gather(&colors)
 }
