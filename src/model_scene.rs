@@ -9,6 +9,7 @@ use glam::Vec3;
 
 use crate::mesh::{MeshFile, MeshFileError, ModelFormat};
 use crate::scene::{Camera, Light, Object, Scene, Shape, ShapeKind, UpAxis, default_scene};
+use crate::world::MeshFileCache;
 
 /// Radius of the sphere the model is scaled to fit, world units.
 pub const FIT_RADIUS: f32 = 1.0;
@@ -62,6 +63,24 @@ pub fn scene_for_model(path: &Path, up: UpAxis) -> Result<Scene, ModelSceneError
         error,
     })?;
     scene_for_loaded_model(path, &model, up)
+}
+
+/// As [`scene_for_model`], reading the model through `cache` under the path its scene names it
+/// by (the file's name in its folder, `path`'s parent): a world then built from the scene with
+/// the same cache, its models relative to that folder, reads the file no more. Returns the scene
+/// and that folder.
+pub fn scene_for_model_cached(
+    path: &Path,
+    up: UpAxis,
+    cache: &mut MeshFileCache,
+) -> Result<(Scene, PathBuf), ModelSceneError> {
+    let folder = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let key = folder.join(path.file_name().unwrap_or_default());
+    let model = cache.get(&key).map_err(|error| ModelSceneError::Load {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    Ok((scene_for_loaded_model(path, &model, up)?, folder))
 }
 
 /// As [`scene_for_model`], for `model`, the file at `path` already loaded (the editor keeps it

@@ -21,6 +21,7 @@ use rastray::export::{
 use rastray::render::{Frame, Progress, RenderOptions, Renderer, Size};
 use rastray::scene::{Scene, UpAxis};
 use rastray::text_escape::Escaped;
+use rastray::world::MeshFileCache;
 use signal_hook::consts::{SIGINT, SIGTERM};
 
 use super::batch_plan::{Job, JobKind, Plan};
@@ -281,8 +282,10 @@ fn load_file(
 ) -> anyhow::Result<Loaded> {
     let is_model = path.is_some_and(rastray::model_scene::is_model_file);
     let up = settings.up.or(settings.default_up.filter(|_| is_model));
-    let (scene, base) = super::load_scene(path, up)?;
-    let report = super::build_world(&scene, &base, path)?;
+    let mut cache = MeshFileCache::default();
+    let (scene, base) = super::load_scene(path, up, &mut cache)?;
+    let report = super::build_world(&scene, &base, path, &mut cache)?;
+    drop(cache);
     let files: Vec<PathBuf> = listed.iter().cloned().chain(report.inputs).collect();
     let world = Arc::new(report.world);
     super::print_warnings(&scene, &world);

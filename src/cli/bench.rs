@@ -15,6 +15,7 @@ use rastray::bench::report::{CSV_FILE, REPORT_FILE};
 use rastray::bench::throughput::measure;
 use rastray::bench::{BenchConfig, crossover_plot, crossover_report, number, plot, report, run};
 use rastray::render::Size;
+use rastray::world::MeshFileCache;
 
 /// Timed renders per point by default, and in quick mode.
 const DEFAULT_REPS: u32 = 5;
@@ -139,8 +140,10 @@ fn load_average() -> Option<String> {
 }
 
 fn throughput(args: &ThroughputArgs) -> anyhow::Result<()> {
-    let (scene, base) = super::load_scene(Some(&args.scene), None)?;
-    let world = Arc::new(World::build(&scene, &base)?);
+    let mut cache = MeshFileCache::default();
+    let (scene, base) = super::load_scene(Some(&args.scene), None, &mut cache)?;
+    let world = Arc::new(World::build_cached(&scene, &base, &mut cache)?);
+    drop(cache);
     let t = measure(&scene, &world, args.size, args.reps)?;
     outln!(
         "{}: {} triangles at {}, median of {} render(s)",

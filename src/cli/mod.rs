@@ -200,11 +200,11 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
             let graphics = cli.graphics.or(defaults.graphics).unwrap_or_default();
             let request = graphics.editor_request()?;
             let color = cli.color.or(defaults.color);
-            let startup =
-                rastray::tui::terminal::color_probe::detect(color.map(ColorMode::from), request);
+            let probe =
+                || rastray::tui::terminal::color_probe::detect(color.map(ColorMode::from), request);
             let up = cli.up.or(defaults.up);
             refuse_up_without_model(cli.scene.as_deref(), cli.up)?;
-            let exit = rastray::tui::run(cli.scene, up.unwrap_or_default(), startup)?;
+            let exit = rastray::tui::run(cli.scene, up.unwrap_or_default(), probe)?;
             Ok(ExitCode::from(exit.code()))
         }
     }
@@ -244,15 +244,19 @@ fn refuse_dumb_terminal(term: Option<&str>) -> anyhow::Result<()> {
 
 /// Loads the scene at `path` (or, for a model file, a scene showing it, turned so that its
 /// `up` axis is +Y), or the built-in default scene; returns it with the directory its model
-/// paths are relative to.
-pub fn load_scene(path: Option<&Path>, up: Option<UpAxis>) -> anyhow::Result<(Scene, PathBuf)> {
+/// paths are relative to. A model file is read into `cache`, where building the scene's world
+/// with that cache finds it: the file is read once. Drop the cache once the world is built, so
+/// that the render does not hold the file's geometry beside the world's.
+pub fn load_scene(
+    path: Option<&Path>,
+    up: Option<UpAxis>,
+    cache: &mut MeshFileCache,
+) -> anyhow::Result<(Scene, PathBuf)> {
     refuse_up_without_model(path, up)?;
     match path {
-        Some(path) if rastray::model_scene::is_model_file(path) => {
-            let scene = rastray::model_scene::scene_for_model(path, up.unwrap_or_default())?;
-            let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
-            Ok((scene, base))
-        }
+        Some(path) if rastray::model_scene::is_model_file(path) => Ok(
+            rastray::model_scene::scene_for_model_cached(path, up.unwrap_or_default(), cache)?,
+        ),
         Some(path) => {
             let scene = rastray::scene::load(path).map_err(|error| match error {
                 // Binary data that is no model either: say what was expected.
@@ -300,18 +304,10 @@ pub fn print_warnings(scene: &Scene, world: &rastray::World) {
 }
 
 /// Builds the world of `scene` (model paths relative to `base`), read from `input` (`None`
-/// for the default scene), printing on stderr what its model files held that rastray skipped,
-/// one `warning:` line each.
+/// for the default scene), taking the model files already read from `cache` and keeping those
+/// it reads there; prints on stderr what its model files held that rastray skipped, one
+/// `warning:` line each.
 pub fn build_world(
-    scene: &Scene,
-    base: &Path,
-    input: Option<&Path>,
-) -> anyhow::Result<WorldReport> {
-    build_world_cached(scene, base, input, &mut MeshFileCache::default())
-}
-
-/// As [`build_world`], keeping the model files read in `cache`.
-pub fn build_world_cached(
     scene: &Scene,
     base: &Path,
     input: Option<&Path>,

@@ -13,6 +13,7 @@ use rastray::World;
 use rastray::render::{Algorithm, Frame, Progress, RenderOptions, Renderer};
 use rastray::terminal_image::preview::PreviewImage;
 use rastray::terminal_image::{CellArea, Protocol};
+use rastray::world::MeshFileCache;
 
 use super::algorithm_arg::AlgorithmArg;
 use super::camera_args::CameraArgs;
@@ -71,11 +72,13 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
             .as_deref()
             .is_some_and(rastray::model_scene::is_model_file)
     }));
-    // With --grid each input is loaded on its own, and one that fails is skipped.
+    // With --grid each input is loaded on its own, and one that fails is skipped. A model file
+    // read here waits in `cache` for the world.
+    let mut cache = MeshFileCache::default();
     let loaded = if args.grid {
         None
     } else {
-        Some(super::load_scene(args.scene.as_deref(), up)?)
+        Some(super::load_scene(args.scene.as_deref(), up, &mut cache)?)
     };
     let stdout = std::io::stdout();
     let is_terminal = stdout.is_terminal();
@@ -125,8 +128,11 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
             options,
         };
         return motion::play(&args.motion, &picture, || {
-            let (scene, base) = super::load_scene(args.scene.as_deref(), up)?;
-            let report = super::build_world(&scene, &base, args.scene.as_deref())?;
+            // The first load finds the model read above; later ones read it again.
+            let mut cache = std::mem::take(&mut cache);
+            let (scene, base) = super::load_scene(args.scene.as_deref(), up, &mut cache)?;
+            let report = super::build_world(&scene, &base, args.scene.as_deref(), &mut cache)?;
+            drop(cache);
             let world = Arc::new(report.world);
             let camera = args.camera.camera_for(
                 args.camera.view.first().copied(),
@@ -142,7 +148,8 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
             })
         });
     }
-    let world = Arc::new(World::build(&scene, &base)?);
+    let world = Arc::new(World::build_cached(&scene, &base, &mut cache)?);
+    drop(cache);
     args.display.print_notes(&world);
     let camera = args.camera.camera_for(
         args.camera.view.first().copied(),

@@ -13,6 +13,7 @@ use rastray::render::{Frame, Progress, RenderOptions, Renderer};
 use rastray::terminal_image::preview::PreviewImage;
 use rastray::terminal_image::{CellArea, CellSize, Protocol};
 use rastray::text_escape::Escaped;
+use rastray::world::MeshFileCache;
 
 use super::camera_args::CameraArgs;
 use super::display_args::DisplayArgs;
@@ -174,8 +175,11 @@ fn thumbnail(
     let up = request
         .up
         .filter(|_| rastray::model_scene::is_model_file(input));
-    let (scene, base) = super::load_scene(Some(input), up)?;
-    let world = std::sync::Arc::new(super::build_world(&scene, &base, Some(input))?.world);
+    let mut cache = MeshFileCache::default();
+    let (scene, base) = super::load_scene(Some(input), up, &mut cache)?;
+    let report = super::build_world(&scene, &base, Some(input), &mut cache)?;
+    drop(cache);
+    let world = std::sync::Arc::new(report.world);
     let options = renderer.options();
     let aspect = options.width as f32 / options.height as f32;
     let camera = request.camera.camera_for(

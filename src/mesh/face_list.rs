@@ -1,6 +1,13 @@
 //! The mesh representation every renderer reads.
 
 use glam::{Affine3A, Vec2, Vec3};
+use rayon::prelude::*;
+
+/// Vertices or triangles per parallel task in a pass over a whole mesh: a 10M-triangle scan's
+/// passes (bounds, bounding sphere, placement, zero areas) take tens of milliseconds each on
+/// one core, and the editor's first frame waits for all of them. Each pass gives the same bits
+/// on any number of threads (minima, maxima, counts and per-item maps).
+pub(crate) const PASS_CHUNK: usize = 1 << 14;
 
 /// Indexed triangles with one unit normal per vertex, and optionally one colour and one texture
 /// coordinate per vertex.
@@ -68,9 +75,15 @@ impl Mesh {
     /// [`super::with_normals`] gives them a neighbour's normal.
     pub fn zero_area_triangles(&self) -> usize {
         (0..self.triangles.len())
+            .into_par_iter()
+            .with_min_len(PASS_CHUNK)
             .filter(|&t| {
                 let [a, b, c] = self.corners(t);
-                (b - a).cross(c - a).normalize_or_zero() == Vec3::ZERO
+                // `normalize_or_zero` gives zero exactly where the squared length is zero, not
+                // finite or NaN (its reciprocal square root then is not finite and positive);
+                // tested without the square root and division.
+                let squared = (b - a).cross(c - a).length_squared();
+                !(squared > 0.0 && squared < f32::INFINITY)
             })
             .count()
     }
@@ -78,11 +91,7 @@ impl Mesh {
     /// Axis-aligned bounds (min, max); `None` for an empty mesh.
     pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
         let first = *self.positions.first()?;
-        Some(
-            self.positions
-                .iter()
-                .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p))),
-        )
+        Some(bounds_of(&self.positions, (first, first)))
     }
 
     /// A sphere enclosing every vertex, centred on the centre of `bounds`, which are this
@@ -97,20 +106,23 @@ impl Mesh {
         let center = (lo + hi) * 0.5;
         let radius = self
             .positions
-            .iter()
+            .par_iter()
+            .with_min_len(PASS_CHUNK)
             .map(|p| p.distance(center))
-            .fold(0.0, f32::max);
+            .reduce(|| 0.0, f32::max);
         Sphere { center, radius }
     }
 
     /// The mesh moved by `transform` (a rotation, uniform scale and translation).
     pub fn transformed(mut self, transform: Affine3A) -> Mesh {
-        for p in &mut self.positions {
-            *p = transform.transform_point3(*p);
-        }
-        for n in &mut self.normals {
-            *n = transform.transform_vector3(*n).normalize_or_zero();
-        }
+        self.positions
+            .par_iter_mut()
+            .with_min_len(PASS_CHUNK)
+            .for_each(|p| *p = transform.transform_point3(*p));
+        self.normals
+            .par_iter_mut()
+            .with_min_len(PASS_CHUNK)
+            .for_each(|n| *n = transform.transform_vector3(*n).normalize_or_zero());
         self
     }
 
@@ -127,6 +139,19 @@ impl Mesh {
         self.triangles
             .extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
     }
+}
+
+/// The smallest and largest coordinates of `points` and of `start` (min, max), per axis: the
+/// same on any number of threads (a minimum does not depend on the order it is taken in).
+pub(crate) fn bounds_of(points: &[Vec3], start: (Vec3, Vec3)) -> (Vec3, Vec3) {
+    points
+        .par_chunks(PASS_CHUNK)
+        .map(|chunk| {
+            chunk
+                .iter()
+                .fold(start, |(lo, hi), &p| (lo.min(p), hi.max(p)))
+        })
+        .reduce(|| start, |(a, b), (c, d)| (a.min(c), b.max(d)))
 }
 
 /// Appends `more` (per-vertex values of `more_count` vertices, or none) to `values` (of `count`
@@ -147,5 +172,71 @@ fn append_per_vertex<T: Copy>(
             *values = Some(filled);
         }
         (None, None) => {}
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One triangle a cross product: corners 0, `e1`, `e2` (edges `e1` and `e2`).
+    fn triangle(e1: Vec3, e2: Vec3) -> Mesh {
+        Mesh {
+            positions: vec![Vec3::ZERO, e1, e2],
+            normals: vec![Vec3::Y; 3],
+            triangles: vec![[0, 1, 2]],
+            ..Mesh::default()
+        }
+    }
+
+    #[test]
+    fn zero_area_is_where_the_normal_has_no_direction() {
+        let tiny = 3e-23; // squared cross product subnormal, its square root normal
+        let cases = [
+            (Vec3::X, Vec3::Y),
+            (Vec3::X, Vec3::X * 2.0),
+            (Vec3::X * 1e-30, Vec3::Y * 1e-30), // the cross product's square underflows
+            (Vec3::X * tiny, Vec3::Y),
+            (Vec3::X * 1e5, Vec3::Y * 1e5), // length 1e10, its square 1e20: finite
+            (Vec3::X * 1e20, Vec3::Y * 1e20), // the square overflows
+            (Vec3::X * f32::MAX, Vec3::Y * f32::MAX),
+            (Vec3::new(f32::NAN, 0.0, 0.0), Vec3::Y),
+            (Vec3::new(f32::INFINITY, 0.0, 0.0), Vec3::Y),
+        ];
+        for (e1, e2) in cases {
+            let by_normal = usize::from(e1.cross(e2).normalize_or_zero() == Vec3::ZERO);
+            assert_eq!(
+                triangle(e1, e2).zero_area_triangles(),
+                by_normal,
+                "{e1} {e2}"
+            );
+        }
+    }
+
+    #[test]
+    fn bounds_and_sphere_are_those_of_one_pass_in_order() {
+        // More points than one parallel task takes, so that several tasks join.
+        let positions: Vec<Vec3> = (0..5 * PASS_CHUNK)
+            .map(|i| {
+                let t = i as f32 * 0.618;
+                Vec3::new(t.sin() * 3.0, (t * 1.7).cos() - 1.0, (t * 0.3).sin() * t)
+            })
+            .collect();
+        let mesh = Mesh {
+            normals: vec![Vec3::Y; positions.len()],
+            positions: positions.clone(),
+            ..Mesh::default()
+        };
+        let first = positions[0];
+        let serial = positions
+            .iter()
+            .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        assert_eq!(mesh.bounds(), Some(serial));
+        let center = (serial.0 + serial.1) * 0.5;
+        let radius = positions
+            .iter()
+            .map(|p| p.distance(center))
+            .fold(0.0, f32::max);
+        assert_eq!(mesh.bounding_sphere(Some(serial)).radius, radius);
     }
 }

@@ -29,9 +29,9 @@ pub struct ModelGeometry {
 impl ModelGeometry {
     /// Axis-aligned bounds (min, max) of the positions; inverted (MAX, MIN) when empty.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        self.positions.iter().fold(
+        super::face_list::bounds_of(
+            &self.positions,
             (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
-            |(lo, hi), &p| (lo.min(p), hi.max(p)),
         )
     }
 

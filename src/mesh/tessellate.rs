@@ -3,9 +3,10 @@
 use std::collections::HashMap;
 
 use glam::{Affine3A, EulerRot, Quat, Vec3};
+use rayon::prelude::*;
 
 use super::cuboid::cuboid;
-use super::face_list::Mesh;
+use super::face_list::{Mesh, PASS_CHUNK};
 use super::geometry::ModelGeometry;
 use super::icosahedron::icosahedron;
 use super::normals::{with_colors_and_normals, with_normals};
@@ -69,7 +70,8 @@ pub fn tessellate_part(object: &Object, geometry: &ModelGeometry, centre: Vec3) 
     };
     let positions: Vec<Vec3> = geometry
         .positions
-        .iter()
+        .par_iter()
+        .with_min_len(PASS_CHUNK)
         .map(|&p| (p - centre) * *scale)
         .collect();
     part_mesh(object, geometry, &positions).transformed(object_transform(object))

@@ -27,7 +27,6 @@ use std::time::{Duration, Instant};
 use ratatui::crossterm::event::Event as TermEvent;
 use ratatui::layout::Rect;
 
-use crate::model_scene::ModelSceneError;
 use crate::scene::Scene;
 use crate::world::MeshFileCache;
 use input::action::Action;
@@ -53,13 +52,25 @@ enum Event {
 /// Runs the editor on the scene at `scene_path` (the built-in scene when `None`) until the user
 /// quits or the process receives SIGTERM, SIGHUP or SIGINT. Unsaved edits are kept in the
 /// recovery file meanwhile, and written there at once when a signal or an error ends the editor.
-/// The preview is drawn as `startup` says (see [`color_probe::detect`]).
+/// The preview is drawn as `probe` finds out (see [`color_probe::detect`]); it asks the
+/// terminal while the scene or model is read on another thread, since a big model takes a
+/// second or more to read and the terminal's answers wait on the terminal, not on the CPU.
 pub fn run(
     scene_path: Option<PathBuf>,
     up: crate::scene::UpAxis,
-    startup: color_probe::Startup,
+    probe: impl FnOnce() -> color_probe::Startup,
 ) -> Result<Exit, TuiError> {
-    let mut editor = Editor::start(scene_path, up, startup)?;
+    let started = Instant::now();
+    let mut cache = MeshFileCache::default();
+    let (loaded, startup) = std::thread::scope(|scope| {
+        let loading = scope.spawn(|| load(scene_path.as_deref(), up, &mut cache));
+        let startup = probe();
+        let loaded = loading
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (loaded, startup)
+    });
+    let mut editor = Editor::start(loaded?, cache, scene_path.as_deref(), startup, started)?;
     let ended = editor.event_loop();
     editor.await_last_answer();
     editor.close(ended)
@@ -82,17 +93,18 @@ struct Editor {
 }
 
 impl Editor {
-    /// Loads the scene, starts the signal watch, autosave, input and render threads, and takes
-    /// over the terminal.
+    /// Starts the editor on `app`, loaded from `scene_path` at `started` (with the model files
+    /// it read in `cache`): the signal watch, autosave, input and render threads, and the
+    /// terminal taken over.
     fn start(
-        scene_path: Option<PathBuf>,
-        up: crate::scene::UpAxis,
+        app: App,
+        cache: MeshFileCache,
+        scene_path: Option<&Path>,
         startup: color_probe::Startup,
+        started: Instant,
     ) -> Result<Editor, TuiError> {
-        let started = Instant::now();
         let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
-        let mut cache = MeshFileCache::default();
-        let mut app = load(scene_path.as_deref(), up, &mut cache)?
+        let mut app = app
             .with_color(startup.color)
             .with_plain_interface(no_color)
             .with_graphics(startup.graphics.clone());
@@ -102,7 +114,7 @@ impl Editor {
         if let Some(notice) = &startup.graphics.notice {
             app.info(notice.clone());
         }
-        if let Some(notice) = recovery::notice(scene_path.as_deref()) {
+        if let Some(notice) = recovery::notice(scene_path) {
             app.info(notice);
         }
         let images = image_layer::ImageLayer::new(startup.graphics);
@@ -365,15 +377,9 @@ fn load(
 ) -> Result<App, TuiError> {
     Ok(match path {
         Some(p) if crate::model_scene::is_model_file(p) => {
-            // Read once: the worker's first world takes the model from `cache`, under the path
-            // its scene names it by (the file's name in its folder).
-            let key = document::folder_of(p).join(p.file_name().unwrap_or_default());
-            let model = cache.get(&key).map_err(|error| ModelSceneError::Load {
-                path: p.to_path_buf(),
-                error,
-            })?;
-            let scene = crate::model_scene::scene_for_loaded_model(p, &model, up)?;
-            let mut app = App::new(scene, None, document::folder_of(p));
+            // Read once: the worker's first world takes the model from `cache`.
+            let (scene, folder) = crate::model_scene::scene_for_model_cached(p, up, cache)?;
+            let mut app = App::new(scene, None, folder);
             let file = p.file_name().unwrap_or_default().to_string_lossy();
             app.doc.name_untitled(format!("new scene of {file}"));
             app.info(format!(
