@@ -140,7 +140,7 @@ pub fn positions_of(keys: Vec<[u32; 3]>) -> Vec<glam::Vec3> {
 /// A multiply-xorshift hash of a key's words: the low bits choose the slot, the high 32 are
 /// the tag.
 #[inline]
-fn hash<const N: usize>(key: &[u32; N]) -> u64 {
+pub fn hash<const N: usize>(key: &[u32; N]) -> u64 {
     const K: u64 = 0x9e37_79b9_7f4a_7c15;
     let mut h = 0u64;
     for pair in key.chunks(2) {

@@ -23,12 +23,13 @@ pub enum Role {
     Skip,
 }
 
-/// Reads the records of `element` from `source` by `plan`, feeding `collector` as `role`
+/// Reads the records of `element` from `source` by `plan`, from record `first` (counting from
+/// 0: the records before it are read already) to the last, feeding `collector` as `role`
 /// says; `size` is the file's size in bytes. Big-endian when `BIG`.
 pub fn read_element<R: Read, const BIG: bool>(
     source: &mut ByteSource<R>,
     size: u64,
-    element: &Element,
+    (element, first): (&Element, u64),
     plan: &Plan,
     role: Role,
     collector: &mut Collector,
@@ -39,7 +40,7 @@ pub fn read_element<R: Read, const BIG: bool>(
     let io = |e| (Place::File, PlyProblem::Io(e));
     let mut values = [0f64; SLOTS];
     let mut lists = FaceLists::default();
-    let mut index = 0u64;
+    let mut index = first;
     let mut need = 1;
     while index < element.count {
         let start = source.offset();

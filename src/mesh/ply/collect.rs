@@ -1,16 +1,18 @@
 //! The vertices and faces of a PLY body as they are read, and the geometry they make: faces
 //! fanned into triangles, vertices no face uses dropped, vertices with bit-identical positions
-//! (and colours) welded, per-vertex normals and texture coordinates moved to the corners.
+//! (and colours) welded (kept in file order), per-vertex normals and texture coordinates moved
+//! to the corners.
 
 use glam::{Vec2, Vec3};
 
 use super::error::PlyProblem;
-use super::plan::{FaceLists, NX, RED, SLOTS, U, VertexAttributes, X};
-use super::scalar::Scalar;
+use rayon::prelude::*;
+
+use super::columns::VertexColumns;
+use super::plan::{FaceLists, SLOTS, VertexAttributes};
+use super::weld_used::weld_used;
 use crate::mesh::ModelGeometry;
-use crate::mesh::srgb::{srgb_byte_to_linear, srgb_to_linear};
-use crate::mesh::weld::{BATCH, Welder, coordinate_bits, positions_of};
-use crate::scene::limits::COORDINATE;
+use crate::mesh::weld::coordinate_bits;
 
 /// What has been read so far.
 ///
@@ -21,13 +23,7 @@ pub struct Collector {
     /// The vertex count the header declares.
     vertices: u64,
     attributes: VertexAttributes,
-    positions: Vec<Vec3>,
-    /// Unit normals, while every vertex so far has a finite, non-zero one.
-    normals: Option<Vec<Vec3>>,
-    /// Linear RGB.
-    colors: Option<Vec<Vec3>>,
-    /// (u, v) as written: (0, 0) is the image's bottom-left.
-    uvs: Option<Vec<Vec2>>,
+    columns: VertexColumns,
     triangles: Vec<[u32; 3]>,
     /// (u, v) of each triangle's corners from the faces' `texcoord` lists, while every face
     /// so far has one of the right length.
@@ -53,10 +49,7 @@ impl Collector {
         Collector {
             vertices,
             attributes,
-            positions: Vec::with_capacity(n),
-            normals: attributes.normals.then(|| Vec::with_capacity(n)),
-            colors: attributes.colors.map(|_| Vec::with_capacity(n)),
-            uvs: attributes.uvs.then(|| Vec::with_capacity(n)),
+            columns: VertexColumns::new(1, n, attributes),
             triangles: Vec::with_capacity(faces.min(limit) as usize),
             face_uvs: face_uvs.then(Vec::new),
             faces: 0,
@@ -67,56 +60,20 @@ impl Collector {
     /// Takes one vertex record; errors name the vertex (from 1).
     #[inline]
     pub fn vertex(&mut self, values: &[f64; SLOTS]) -> Result<(), PlyProblem> {
-        let vertex = self.positions.len() as u64 + 1;
-        let mut p = [0f32; 3];
-        for (c, out) in p.iter_mut().enumerate() {
-            let value = values[X + c];
-            let single = value as f32;
-            if !COORDINATE.accepts(single) {
-                return Err(if value.is_finite() {
-                    PlyProblem::OutOfRange {
-                        vertex,
-                        value: single,
-                    }
-                } else {
-                    PlyProblem::NonFinite { vertex }
-                });
-            }
-            *out = single;
-        }
-        self.positions.push(Vec3::from_array(p));
-        if let Some(normals) = &mut self.normals {
-            let n = Vec3::new(
-                values[NX] as f32,
-                values[NX + 1] as f32,
-                values[NX + 2] as f32,
-            )
-            .normalize_or_zero();
-            if n.is_finite() && n != Vec3::ZERO {
-                normals.push(n);
-            } else {
-                self.normals = None;
-            }
-        }
-        if let (Some(colors), Some(ty)) = (&mut self.colors, self.attributes.colors) {
-            let channel = |v: f64| match ty {
-                Scalar::U8 => srgb_byte_to_linear(v as u8),
-                _ => srgb_to_linear((v / ty.full_scale()) as f32),
-            };
-            colors.push(Vec3::new(
-                channel(values[RED]),
-                channel(values[RED + 1]),
-                channel(values[RED + 2]),
-            ));
-        }
-        if let Some(uvs) = &mut self.uvs {
-            let uv = Vec2::new(values[U] as f32, values[U + 1] as f32);
-            if !uv.is_finite() {
-                return Err(PlyProblem::NonFiniteUv { vertex });
-            }
-            uvs.push(uv);
-        }
-        Ok(())
+        self.columns.push(values, self.attributes.colors)
+    }
+
+    /// Number (from 1) of the next vertex, and what the vertex element gives.
+    pub fn next_vertex(&self) -> (u64, VertexAttributes) {
+        (
+            self.columns.first + self.columns.positions.len() as u64,
+            self.attributes,
+        )
+    }
+
+    /// Takes the vertices of `run`, the next in the file.
+    pub fn vertices(&mut self, run: VertexColumns) {
+        self.columns.append(run);
     }
 
     /// Takes one face's vertex indices, fanned into triangles (a face of fewer than three
@@ -167,6 +124,35 @@ impl Collector {
         Ok(())
     }
 
+    /// How many more faces of one triangle each may be taken before the triangle limit.
+    pub fn triangle_room(&self) -> u64 {
+        self.limit.saturating_sub(self.triangles.len() as u64)
+    }
+
+    /// Takes up to `n` faces of one triangle each (at most [`Collector::triangle_room`]):
+    /// `fill` writes their triangles, already checked against [`FaceRun::vertices`], and says
+    /// how many of them it wrote (a prefix); an error leaves no face taken.
+    pub fn fixed_faces<E>(
+        &mut self,
+        n: usize,
+        fill: impl FnOnce(&mut [[u32; 3]], FaceRun) -> Result<usize, E>,
+    ) -> Result<usize, E> {
+        debug_assert!(n as u64 <= self.triangle_room() && self.face_uvs.is_none());
+        let start = self.triangles.len();
+        self.triangles.resize(start + n, [0; 3]);
+        let run = FaceRun {
+            first: self.faces + 1,
+            vertices: self.vertices,
+        };
+        let kept = fill(&mut self.triangles[start..], run);
+        self.triangles
+            .truncate(start + *kept.as_ref().unwrap_or(&0));
+        if let Ok(kept) = kept {
+            self.faces += kept as u64;
+        }
+        kept
+    }
+
     /// The geometry read. Called once every record is read.
     pub fn finish(self) -> Result<ModelGeometry, PlyProblem> {
         if self.triangles.is_empty() {
@@ -174,7 +160,7 @@ impl Collector {
         }
         let corner = |values: &[Vec2], t: &[u32; 3]| t.map(|i| values[i as usize]);
         let flip = |uv: Vec2| Vec2::new(uv.x, 1.0 - uv.y);
-        let corner_uvs = match (&self.face_uvs, &self.uvs) {
+        let corner_uvs = match (&self.face_uvs, &self.columns.uvs) {
             (Some(face_uvs), _) => Some(face_uvs.iter().map(|t| t.map(flip)).collect()),
             (None, Some(uvs)) => Some(
                 self.triangles
@@ -184,28 +170,34 @@ impl Collector {
             ),
             (None, None) => None,
         };
-        let corner_normals = self.normals.as_ref().map(|normals| {
+        let corner_normals = self.columns.normals.as_ref().map(|normals| {
             self.triangles
                 .iter()
                 .map(|t| t.map(|i| normals[i as usize]))
                 .collect()
         });
-        let (positions, colors, triangles) = match &self.colors {
+        let mut positions = self.columns.positions;
+        let (positions, colors, triangles) = match &self.columns.colors {
             Some(colors) => {
-                let key = |i: usize| {
-                    let [x, y, z] = self.positions[i].to_array().map(coordinate_bits);
-                    let [r, g, b] = colors[i].to_array().map(f32::to_bits);
-                    [x, y, z, r, g, b]
-                };
-                let (keys, triangles) = weld(self.positions.len(), self.triangles, key);
+                let keys = positions
+                    .par_iter()
+                    .zip(colors)
+                    .map(|(p, c)| {
+                        let [x, y, z] = p.to_array().map(coordinate_bits);
+                        let [r, g, b] = c.to_array().map(f32::to_bits);
+                        [x, y, z, r, g, b]
+                    })
+                    .collect();
+                let (keys, triangles) = weld_used(keys, |k| *k, self.triangles);
                 let positions = keys.iter().map(|k| from_bits(&k[..3])).collect();
                 let colors = keys.iter().map(|k| from_bits(&k[3..])).collect();
                 (positions, Some(colors), triangles)
             }
             None => {
-                let key = |i: usize| self.positions[i].to_array().map(coordinate_bits);
-                let (keys, triangles) = weld(self.positions.len(), self.triangles, key);
-                let positions = positions_of(keys);
+                // −0 becomes 0, as `coordinate_bits` sees it.
+                positions.par_iter_mut().for_each(|p| *p += Vec3::ZERO);
+                let key = |p: &Vec3| p.to_array().map(f32::to_bits);
+                let (positions, triangles) = weld_used(positions, key, self.triangles);
                 (positions, None, triangles)
             }
         };
@@ -219,6 +211,15 @@ impl Collector {
     }
 }
 
+/// Where a run of faces given to [`Collector::fixed_faces`] stands.
+#[derive(Debug, Clone, Copy)]
+pub struct FaceRun {
+    /// Number (from 1) of the run's first face, for messages.
+    pub first: u64,
+    /// Vertices the file declares: every index must be below.
+    pub vertices: u64,
+}
+
 /// The vector whose three coordinates have the bits `bits[..3]`.
 fn from_bits(bits: &[u32]) -> Vec3 {
     Vec3::new(
@@ -226,40 +227,4 @@ fn from_bits(bits: &[u32]) -> Vec3 {
         f32::from_bits(bits[1]),
         f32::from_bits(bits[2]),
     )
-}
-
-/// The distinct keys of the vertices `triangles` use (`key` of each vertex index, out of
-/// `vertices`), in order of first use, and the triangles re-indexed onto them.
-fn weld<const N: usize>(
-    vertices: usize,
-    mut triangles: Vec<[u32; 3]>,
-    key: impl Fn(usize) -> [u32; N],
-) -> (Vec<[u32; N]>, Vec<[u32; 3]>) {
-    const UNSEEN: u32 = u32::MAX;
-    let mut welder = Welder::with_capacity(vertices);
-    let mut remap = vec![UNSEEN; vertices];
-    // The vertices in order of first use, welded in batches (see `Welder::index_all`).
-    let mut used = Vec::with_capacity(vertices);
-    for &i in triangles.iter().flatten() {
-        let slot = &mut remap[i as usize];
-        if *slot == UNSEEN {
-            *slot = 0;
-            used.push(i);
-        }
-    }
-    let mut keys = [[0u32; N]; BATCH];
-    let mut indices = [0u32; BATCH];
-    for batch in used.chunks(BATCH) {
-        for (k, &i) in keys.iter_mut().zip(batch) {
-            *k = key(i as usize);
-        }
-        welder.index_all(&keys[..batch.len()], &mut indices);
-        for (&i, &index) in batch.iter().zip(&indices) {
-            remap[i as usize] = index;
-        }
-    }
-    for i in triangles.iter_mut().flatten() {
-        *i = remap[*i as usize];
-    }
-    (welder.into_keys(), triangles)
 }

@@ -13,10 +13,13 @@
 mod ascii;
 mod binary;
 mod collect;
+mod columns;
 mod error;
+mod fixed;
 mod header;
 mod plan;
 mod scalar;
+mod weld_used;
 
 use std::io::{BufReader, Read};
 use std::path::{Path, PathBuf};
@@ -26,6 +29,7 @@ pub use header::PlyEncoding;
 
 use self::binary::Role;
 use self::collect::Collector;
+use self::fixed::{FaceLayout, VertexLayout};
 use self::header::{Element, Header, read_header};
 use self::plan::{Plan, face_plan, skip_plan, vertex_plan};
 use super::byte_source::ByteSource;
@@ -243,14 +247,42 @@ fn read_body<R: Read>(
         }
         PlyEncoding::BinaryLittleEndian => {
             for (element, (plan, role)) in header.elements.iter().zip(plans) {
+                let first = fast_prefix::<R, false>(source, element, &plan, &role, collector)?;
+                let element = (element, first);
                 binary::read_element::<R, false>(source, size, element, &plan, role, collector)?;
             }
         }
         PlyEncoding::BinaryBigEndian => {
             for (element, (plan, role)) in header.elements.iter().zip(plans) {
+                let first = fast_prefix::<R, true>(source, element, &plan, &role, collector)?;
+                let element = (element, first);
                 binary::read_element::<R, true>(source, size, element, &plan, role, collector)?;
             }
         }
     }
     Ok(())
+}
+
+/// Reads the records of a vertex or face element that the fast paths of [`fixed`] fit, while
+/// they fit; how many are read (the general reader reads the rest).
+fn fast_prefix<R: Read, const BIG: bool>(
+    source: &mut ByteSource<R>,
+    element: &Element,
+    plan: &Plan,
+    role: &Role,
+    collector: &mut Collector,
+) -> Result<u64, (Place, PlyProblem)> {
+    match role {
+        Role::Vertex => match VertexLayout::of(plan) {
+            Some(layout) => {
+                fixed::read_vertices::<R, BIG>(source, element.count, &layout, collector)
+            }
+            None => Ok(0),
+        },
+        Role::Face => match FaceLayout::of(plan) {
+            Some(layout) => fixed::read_faces::<R, BIG>(source, element.count, &layout, collector),
+            None => Ok(0),
+        },
+        Role::Skip => Ok(0),
+    }
 }
