@@ -10,8 +10,8 @@ use rastray::text_escape::Escaped;
 use rastray::world::{MeshFileCache, WorldObject};
 
 pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()> {
-    let (scene, base) = super::load_scene(Some(path), up)?;
     let mut cache = MeshFileCache::default();
+    let (scene, base) = super::load_scene_cached(Some(path), up, &mut cache)?;
     let report = super::build_world_cached(&scene, &base, Some(path), &mut cache)?;
     let world = &report.world;
     super::print_warnings(&scene, world);

@@ -246,11 +246,30 @@ fn refuse_dumb_terminal(term: Option<&str>) -> anyhow::Result<()> {
 /// `up` axis is +Y), or the built-in default scene; returns it with the directory its model
 /// paths are relative to.
 pub fn load_scene(path: Option<&Path>, up: Option<UpAxis>) -> anyhow::Result<(Scene, PathBuf)> {
+    load_scene_cached(path, up, &mut MeshFileCache::default())
+}
+
+/// As [`load_scene`], a model file read into `cache` under the path its scene names it by, so
+/// that building the world from `cache` takes it from there rather than reading it again.
+pub fn load_scene_cached(
+    path: Option<&Path>,
+    up: Option<UpAxis>,
+    cache: &mut MeshFileCache,
+) -> anyhow::Result<(Scene, PathBuf)> {
     refuse_up_without_model(path, up)?;
     match path {
         Some(path) if rastray::model_scene::is_model_file(path) => {
-            let scene = rastray::model_scene::scene_for_model(path, up.unwrap_or_default())?;
             let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+            let key = base.join(path.file_name().unwrap_or_default());
+            let model =
+                cache
+                    .get(&key)
+                    .map_err(|error| rastray::model_scene::ModelSceneError::Load {
+                        path: path.to_path_buf(),
+                        error,
+                    })?;
+            let scene =
+                rastray::model_scene::scene_for_loaded_model(path, &model, up.unwrap_or_default())?;
             Ok((scene, base))
         }
         Some(path) => {
