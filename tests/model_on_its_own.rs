@@ -119,3 +119,38 @@ fn a_model_with_nothing_to_show_is_refused_by_name() {
     );
     assert!(!out.exists());
 }
+
+/// `info` reads a model once, keyed by the path its scene names it by: given by a bare name in
+/// the current folder, as `./name` or by its full path, it lists the same model, and a broken
+/// one is refused naming the file and line.
+#[test]
+fn info_on_a_model_reads_it_the_same_whatever_the_path_form() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(data("obj/cube.obj"), dir.path().join("cube.obj")).unwrap();
+    std::fs::write(
+        dir.path().join("bad.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 x 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    let info = |name: &str| {
+        let o = Command::new(env!("CARGO_BIN_EXE_rastray"))
+            .args(["info", name])
+            .current_dir(dir.path())
+            .output()
+            .expect("runs");
+        let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+        let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+        // Everything after the first line, which is the path as given.
+        let listing = stdout.lines().skip(1).collect::<Vec<_>>().join("\n");
+        (o.status.code(), listing, stderr)
+    };
+    let full = dir.path().join("cube.obj");
+    let expected = info(full.to_str().unwrap());
+    assert_eq!(expected.0, Some(0), "{}", expected.2);
+    assert!(expected.1.contains("12 triangles"), "{}", expected.1);
+    assert_eq!(info("cube.obj"), expected);
+    assert_eq!(info("./cube.obj"), expected);
+    let (code, _, stderr) = info("bad.obj");
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("bad.obj:3"), "{stderr}");
+}

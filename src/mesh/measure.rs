@@ -13,7 +13,7 @@ use glam::{DVec3, Vec3};
 
 use rayon::prelude::*;
 
-use super::weld::{BATCH, Welder, coordinate_bits};
+use super::weld::coordinate_bits;
 
 /// What [`measure`] finds. Lengths in the mesh's units, areas in their square, volumes in their
 /// cube.
@@ -98,25 +98,13 @@ const PIECE: usize = 1 << 16;
 /// Measures the triangles of `parts` (each a position list and triangles indexing it) as one
 /// mesh, welded across parts. Sums, edges and the sort run on the current rayon pool.
 pub fn measure(parts: &[(&[Vec3], &[[u32; 3]])]) -> Measurements {
-    let distinct: usize = parts.iter().map(|(p, _)| p.len()).sum();
-    let mut welder = Welder::<3>::with_capacity(distinct);
+    let (all_ids, positions) = weld(parts);
     let mut welded_triangles: Vec<[u32; 3]> = Vec::new();
-    let mut positions: Vec<DVec3> = Vec::new();
     let mut m = Measurements::default();
+    let mut first = 0;
     for (part_positions, triangles) in parts {
-        let mut ids = vec![0_u32; part_positions.len()];
-        let mut keys = [[0_u32; 3]; BATCH];
-        for (points, out) in part_positions.chunks(BATCH).zip(ids.chunks_mut(BATCH)) {
-            for (key, p) in keys.iter_mut().zip(points) {
-                *key = p.to_array().map(coordinate_bits);
-            }
-            welder.index_all(&keys[..points.len()], out);
-            for (&id, p) in out.iter().zip(points) {
-                if id as usize == positions.len() {
-                    positions.push(p.as_dvec3());
-                }
-            }
-        }
+        let ids = &all_ids[first..first + part_positions.len()];
+        first += part_positions.len();
         let pieces: Vec<Measurements> = triangles
             .par_chunks(PIECE)
             .map(|piece| measure_piece(part_positions, piece))
@@ -130,7 +118,7 @@ pub fn measure(parts: &[(&[Vec3], &[[u32; 3]])]) -> Measurements {
             m.degenerate_triangles += piece.degenerate_triangles;
             m.area += piece.area;
         }
-        welded_triangles.extend(triangles.iter().map(|t| t.map(|i| ids[i as usize])));
+        welded_triangles.par_extend(triangles.par_iter().map(|t| t.map(|i| ids[i as usize])));
     }
     let edges = edge_counts(&welded_triangles, positions.len());
     m.boundary_edges = edges.boundary;
@@ -153,6 +141,32 @@ pub fn measure(parts: &[(&[Vec3], &[[u32; 3]])]) -> Measurements {
         m.volume = Some((six_v / 6.0).abs());
     }
     m
+}
+
+/// The positions of `parts`, one after another, welded: each one's id, and for each id the
+/// position of its first (as `f64`). Positions whose coordinates have the same bits (−0 as 0)
+/// share an id. The ids are numbered in sorted order of those bits, not first sight: what is
+/// measured does not depend on the numbering. Sorted on all cores, where a hash table of the
+/// positions took one core (60 of `info`'s 150 ms measuring the 655,362 positions of a
+/// 1.31M-triangle sphere).
+fn weld(parts: &[(&[Vec3], &[[u32; 3]])]) -> (Vec<u32>, Vec<DVec3>) {
+    let all: Vec<Vec3> = parts.iter().flat_map(|(p, _)| p.iter().copied()).collect();
+    let mut keyed: Vec<([u32; 3], u32)> = all
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| (p.to_array().map(coordinate_bits), i as u32))
+        .collect();
+    // By key, then by index: the first of a run of one key is its first in the parts.
+    keyed.par_sort_unstable();
+    let mut ids = vec![0u32; all.len()];
+    let mut positions = Vec::new();
+    for (j, &(key, i)) in keyed.iter().enumerate() {
+        if j == 0 || keyed[j - 1].0 != key {
+            positions.push(all[i as usize].as_dvec3());
+        }
+        ids[i as usize] = positions.len() as u32 - 1;
+    }
+    (ids, positions)
 }
 
 /// Bounds, count, degenerate count and area of `triangles` (indexing `positions`).
@@ -353,5 +367,46 @@ mod tests {
         assert_eq!(file.size(), Vec3::ONE);
         let total = Measurements::total(&[m, file]);
         assert!((total.volume.unwrap() - 9.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn welding_joins_exactly_the_positions_of_equal_bits_and_keeps_the_first() {
+        // Positions drawn from a few values, ±0 among them, over two parts.
+        let values = [0.0, -0.0, 1.0, 0.5, -2.0];
+        let mut state = 7u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            values[(state >> 33) as usize % values.len()]
+        };
+        let a: Vec<Vec3> = (0..300)
+            .map(|_| Vec3::new(next(), next(), next()))
+            .collect();
+        let b: Vec<Vec3> = (0..200)
+            .map(|_| Vec3::new(next(), next(), next()))
+            .collect();
+        let (ids, positions) = weld(&[(&a[..], &[][..]), (&b[..], &[][..])]);
+        let all: Vec<Vec3> = a.iter().chain(&b).copied().collect();
+        let key = |p: Vec3| p.to_array().map(coordinate_bits);
+        for (i, &p) in all.iter().enumerate() {
+            let first = all.iter().position(|&q| key(q) == key(p)).unwrap();
+            // The same id as the first of its bits, which it carries to the bit (−0 kept).
+            assert_eq!(ids[i], ids[first], "{i}");
+            let kept = positions[ids[i] as usize];
+            assert_eq!(
+                kept.to_array().map(f64::to_bits),
+                all[first].as_dvec3().to_array().map(f64::to_bits)
+            );
+            for (j, &q) in all.iter().enumerate() {
+                assert_eq!(ids[i] == ids[j], key(p) == key(q), "{i} {j}");
+            }
+        }
+        // −0 and 0 met: at most 4³ ids where the signed bits give 5³.
+        assert!(
+            positions.len() <= 64 && positions.len() > 20,
+            "{}",
+            positions.len()
+        );
     }
 }

@@ -52,12 +52,18 @@ pub fn with_colors_and_normals(
     if !smooth {
         return flat_normals(positions, triangles, colors);
     }
+    let (weighted, unit) = face_normals(triangles, positions);
+    smooth_normals(positions, triangles, colors, &weighted, &unit)
+}
+
+/// Each triangle's area-weighted normal and its unit normal (zero for a degenerate one).
+fn face_normals(triangles: &[[u32; 3]], positions: &[Vec3]) -> (Vec<Vec3>, Vec<Vec3>) {
     let weighted: Vec<Vec3> = triangles
         .par_iter()
         .map(|&t| area_weighted_normal(positions, t))
         .collect();
-    let unit: Vec<Vec3> = weighted.par_iter().map(|&n| unit_or_zero(n)).collect();
-    smooth_normals(positions, triangles, colors, &weighted, &unit)
+    let unit = weighted.par_iter().map(|&n| unit_or_zero(n)).collect();
+    (weighted, unit)
 }
 
 /// The face normal of triangle `[a, b, c]` weighted by its area: the edges' cross product,
@@ -111,6 +117,15 @@ fn points(positions: &[Vec3]) -> Vec<u32> {
         .collect()
 }
 
+/// The smooth mesh: each corner's normal from the faces around its point, and one output
+/// vertex for each vertex and distinct normal, numbered in the order of the first corner
+/// (triangle by triangle, corner by corner) that uses it, as a reader going corner by corner
+/// and making a vertex at each new (vertex, normal) would number them.
+///
+/// Every step runs on all cores: the corners of each vertex are met through the faces around
+/// its point (listed in triangle order), so each vertex finds its own distinct normals and the
+/// corners that first use them; a vertex's number is the count of first-using corners before
+/// its own (a rank in a bit set over the corners).
 fn smooth_normals(
     positions: &[Vec3],
     triangles: &[[u32; 3]],
@@ -119,107 +134,205 @@ fn smooth_normals(
     unit: &[Vec3],
 ) -> Mesh {
     let cos_crease = CREASE_ANGLE_DEGREES.to_radians().cos();
-    // Without colours, positions are welded already: each is its own point.
-    let point_of = colors.map(|_| points(positions));
-    let point = |v: u32| point_of.as_ref().map_or(v, |p| p[v as usize]) as usize;
-    // Faces around each point, as compressed rows: faces_of[start[p]..start[p + 1]].
-    let mut start = vec![0u32; positions.len() + 1];
-    for tri in triangles {
-        for &v in tri {
-            start[point(v) + 1] += 1;
+    let faces = FacesAround::new(positions, triangles, colors);
+    let point = |v: u32| faces.point(v);
+    let around = |p: usize| faces.around(p);
+    // Points met by more than EXACT_DEGREE faces, summarised once each (see `Crowd`).
+    let crowds: HashMap<usize, Crowd> = (0..positions.len())
+        .into_par_iter()
+        .filter(|&p| around(p).len() > EXACT_DEGREE)
+        .map(|p| (p, Crowd::new(around(p), weighted, unit, cos_crease)))
+        .collect();
+    // The normal of vertex `v` at a corner of face `t`: face by face where the point has few
+    // faces, else from its crowd.
+    let normal_at = |t: usize, v: u32| -> Vec3 {
+        let p = point(v);
+        let sum = match crowds.get(&p) {
+            Some(crowd) => crowd.sum_for(unit[t], cos_crease),
+            None => {
+                let mut sum = Vec3::ZERO;
+                for &g in around(p) {
+                    if unit[t] == Vec3::ZERO || unit[g as usize].dot(unit[t]) >= cos_crease {
+                        sum += weighted[g as usize];
+                    }
+                }
+                sum
+            }
+        };
+        corner_normal(sum, around(p), unit)
+    };
+    // Each vertex's distinct normals in order of first use, each with the corner (3t + k) that
+    // first uses it: made[made_start[v]..made_start[v + 1]].
+    let chunks: Vec<MadeVertices> = (0..positions.len().div_ceil(VERTEX_RUN))
+        .into_par_iter()
+        .map(|chunk| {
+            let vertices = chunk * VERTEX_RUN..((chunk + 1) * VERTEX_RUN).min(positions.len());
+            let mut counts = Vec::with_capacity(vertices.len());
+            let mut made: Vec<(u32, Vec3)> = Vec::with_capacity(vertices.len());
+            for v in vertices {
+                let v = v as u32;
+                let first = made.len();
+                let mut previous = None;
+                for &g in around(point(v)) {
+                    // A face with two corners at the point is listed twice: read it once.
+                    if previous == Some(g) {
+                        continue;
+                    }
+                    previous = Some(g);
+                    for (k, &w) in triangles[g as usize].iter().enumerate() {
+                        if w != v {
+                            continue;
+                        }
+                        let n = normal_at(g as usize, v);
+                        if !made[first..].iter().any(|&(_, m)| m == n) {
+                            made.push((3 * g + k as u32, n));
+                        }
+                    }
+                }
+                counts.push((made.len() - first) as u32);
+            }
+            (counts, made)
+        })
+        .collect();
+    let mut made_start = Vec::with_capacity(positions.len() + 1);
+    made_start.push(0u32);
+    let mut made = Vec::with_capacity(chunks.iter().map(|c| c.1.len()).sum());
+    for (counts, chunk_made) in chunks {
+        for count in counts {
+            made_start.push(made_start.last().copied().unwrap_or(0) + count);
         }
+        made.extend(chunk_made);
     }
-    for v in 0..positions.len() {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    let mut faces_of = vec![0u32; triangles.len() * 3];
-    for (t, tri) in triangles.iter().enumerate() {
-        for &v in tri {
-            faces_of[fill[point(v)] as usize] = t as u32;
-            fill[point(v)] += 1;
-        }
-    }
-
+    // Output vertex numbers: the rank of each first-using corner among them all.
+    let corners = FirstCorners::new(triangles.len() * 3, made.iter().map(|&(c, _)| c));
+    let numbers: Vec<u32> = made.par_iter().map(|&(c, _)| corners.rank(c)).collect();
     let mut mesh = Mesh {
-        positions: Vec::with_capacity(positions.len()),
-        normals: Vec::with_capacity(positions.len()),
-        triangles: Vec::with_capacity(triangles.len()),
-        colors: colors.map(|_| Vec::with_capacity(positions.len())),
+        positions: vec![Vec3::ZERO; made.len()],
+        normals: vec![Vec3::ZERO; made.len()],
+        triangles: Vec::new(),
+        colors: colors.map(|_| vec![Vec3::ZERO; made.len()]),
         uvs: None,
         flat: false,
     };
-    // The output vertices made for each welded vertex, as chains: `first_made[v]` is the first
-    // (or NONE), `next_made[o]` the one made after output vertex `o` for the same welded
-    // vertex. Two u32 a vertex, where a list per vertex cost some 90 bytes.
-    const NONE: u32 = u32::MAX;
-    let mut first_made = vec![NONE; positions.len()];
-    let mut next_made: Vec<u32> = Vec::with_capacity(positions.len());
-    // Points met by more than EXACT_DEGREE faces, summarised once each (see `Crowd`).
-    let mut crowds: HashMap<usize, Crowd> = HashMap::new();
-    let around = |p: usize| &faces_of[start[p] as usize..start[p + 1] as usize];
-    // A corner's normal from the faces around its point, when they are few (each corner on its
-    // own: the corners of a run of triangles are computed on all cores, then joined in order).
-    let exact = |t: usize, v: u32| -> Option<Vec3> {
-        let around = around(point(v));
-        (around.len() <= EXACT_DEGREE).then(|| {
-            let mut sum = Vec3::ZERO;
-            for &g in around {
-                if unit[t] == Vec3::ZERO || unit[g as usize].dot(unit[t]) >= cos_crease {
-                    sum += weighted[g as usize];
-                }
+    for v in 0..positions.len() {
+        for j in made_start[v] as usize..made_start[v + 1] as usize {
+            let out = numbers[j] as usize;
+            mesh.positions[out] = positions[v];
+            mesh.normals[out] = made[j].1;
+            if let (Some(out_colors), Some(colors)) = (&mut mesh.colors, colors) {
+                out_colors[out] = colors[v];
             }
-            corner_normal(sum, around, unit)
-        })
-    };
-    for (run, tris) in triangles.chunks(RUN).enumerate() {
-        let first = run * RUN;
-        let normals: Vec<[Option<Vec3>; 3]> = tris
-            .par_iter()
-            .enumerate()
-            .map(|(k, tri)| tri.map(|v| exact(first + k, v)))
-            .collect();
-        for (k, (tri, corner_normals)) in tris.iter().zip(normals).enumerate() {
-            let t = first + k;
-            let mut out = [0u32; 3];
-            for (corner, &v) in tri.iter().enumerate() {
-                let n = corner_normals[corner].unwrap_or_else(|| {
-                    let p = point(v);
-                    let sum = crowds
-                        .entry(p)
-                        .or_insert_with(|| Crowd::new(around(p), weighted, unit, cos_crease))
-                        .sum_for(unit[t], cos_crease);
-                    corner_normal(sum, around(p), unit)
-                });
-                let mut made = first_made[v as usize];
-                let mut last = NONE;
-                while made != NONE && mesh.normals[made as usize] != n {
-                    last = made;
-                    made = next_made[made as usize];
-                }
-                if made == NONE {
-                    made = mesh.positions.len() as u32;
-                    mesh.positions.push(positions[v as usize]);
-                    mesh.normals.push(n);
-                    if let (Some(out), Some(colors)) = (&mut mesh.colors, colors) {
-                        out.push(colors[v as usize]);
-                    }
-                    next_made.push(NONE);
-                    match last {
-                        NONE => first_made[v as usize] = made,
-                        _ => next_made[last as usize] = made,
-                    }
-                }
-                out[corner] = made;
-            }
-            mesh.triangles.push(out);
         }
     }
+    // Each corner's vertex: its vertex's only one, or the first whose normal equals its own.
+    mesh.triangles = triangles
+        .par_iter()
+        .enumerate()
+        .map(|(t, tri)| {
+            tri.map(|v| {
+                let range = made_start[v as usize] as usize..made_start[v as usize + 1] as usize;
+                if range.len() == 1 {
+                    return numbers[range.start];
+                }
+                let n = normal_at(t, v);
+                let j = range
+                    .clone()
+                    .find(|&j| made[j].1 == n)
+                    .unwrap_or(range.start);
+                numbers[j]
+            })
+        })
+        .collect();
     mesh
 }
 
-/// Triangles whose corner normals are computed together, on all cores, before they are joined.
-const RUN: usize = 1 << 14;
+/// A run of vertices' output vertices: how many each makes, then each one's first-using corner
+/// (3t + k) and normal, vertex by vertex.
+type MadeVertices = (Vec<u32>, Vec<(u32, Vec3)>);
+
+/// The faces around each point of a mesh, in triangle order, a face once per corner at the
+/// point. Without colours a mesh's positions are welded already, so each is its own point;
+/// with colours, entries of one position are one point (the first of them).
+struct FacesAround {
+    /// The point of each vertex; `None`: each vertex is its own.
+    point_of: Option<Vec<u32>>,
+    /// Compressed rows: the faces around point p are `faces_of[start[p]..start[p + 1]]`.
+    start: Vec<u32>,
+    faces_of: Vec<u32>,
+}
+
+impl FacesAround {
+    fn new(positions: &[Vec3], triangles: &[[u32; 3]], colors: Option<&[Vec3]>) -> FacesAround {
+        let mut faces = FacesAround {
+            point_of: colors.map(|_| points(positions)),
+            start: vec![0u32; positions.len() + 1],
+            faces_of: vec![0u32; triangles.len() * 3],
+        };
+        for tri in triangles {
+            for &v in tri {
+                let p = faces.point(v);
+                faces.start[p + 1] += 1;
+            }
+        }
+        for p in 0..positions.len() {
+            faces.start[p + 1] += faces.start[p];
+        }
+        let mut fill = faces.start.clone();
+        for (t, tri) in triangles.iter().enumerate() {
+            for &v in tri {
+                let p = faces.point(v);
+                faces.faces_of[fill[p] as usize] = t as u32;
+                fill[p] += 1;
+            }
+        }
+        faces
+    }
+
+    /// The point of vertex `v`.
+    #[inline]
+    fn point(&self, v: u32) -> usize {
+        self.point_of.as_ref().map_or(v, |p| p[v as usize]) as usize
+    }
+
+    /// The faces around point `p`, ascending.
+    #[inline]
+    fn around(&self, p: usize) -> &[u32] {
+        &self.faces_of[self.start[p] as usize..self.start[p + 1] as usize]
+    }
+}
+
+/// Vertices whose distinct normals are found together, on one core.
+const VERTEX_RUN: usize = 1 << 12;
+
+/// The corners that first use an output vertex, as a bit set over all corners with the count
+/// of set bits before each word: the rank of a corner among them in constant time.
+struct FirstCorners {
+    words: Vec<u64>,
+    before: Vec<u32>,
+}
+
+impl FirstCorners {
+    /// The set of `first` corners among `corners`.
+    fn new(corners: usize, first: impl Iterator<Item = u32>) -> FirstCorners {
+        let mut words = vec![0u64; corners.div_ceil(64)];
+        for c in first {
+            words[c as usize / 64] |= 1 << (c % 64);
+        }
+        let mut before = Vec::with_capacity(words.len());
+        let mut count = 0u32;
+        for w in &words {
+            before.push(count);
+            count += w.count_ones();
+        }
+        FirstCorners { words, before }
+    }
+
+    /// How many of the set's corners come before corner `c`.
+    fn rank(&self, c: u32) -> u32 {
+        let (word, bit) = (c as usize / 64, c % 64);
+        self.before[word] + (self.words[word] & ((1u64 << bit) - 1)).count_ones()
+    }
+}
 
 /// The unit normal of a corner whose faces around sum to `sum`; when that has no direction,
 /// the first of `around`'s faces that has one, or +Y.
@@ -444,5 +557,158 @@ mod tests {
         for n in &mesh.normals {
             assert!((n.length() - 1.0).abs() < 1e-6, "{n}");
         }
+    }
+
+    /// The join as it was before it ran on all cores, corner by corner: the reference the
+    /// parallel join must match to the bit (vertex order included).
+    fn serial_smooth_normals(case: &Case) -> Mesh {
+        let (positions, triangles, colors) = (&case.0[..], &case.1[..], case.2.as_deref());
+        let (weighted, unit) = face_normals(triangles, positions);
+        let cos_crease = CREASE_ANGLE_DEGREES.to_radians().cos();
+        let faces = FacesAround::new(positions, triangles, colors);
+        let point = |v: u32| faces.point(v);
+
+        let mut mesh = Mesh {
+            positions: Vec::with_capacity(positions.len()),
+            normals: Vec::with_capacity(positions.len()),
+            triangles: Vec::with_capacity(triangles.len()),
+            colors: colors.map(|_| Vec::with_capacity(positions.len())),
+            uvs: None,
+            flat: false,
+        };
+        // The output vertices made for each welded vertex, as chains: `first_made[v]` is the first
+        // (or NONE), `next_made[o]` the one made after output vertex `o` for the same welded
+        // vertex. Two u32 a vertex, where a list per vertex cost some 90 bytes.
+        const NONE: u32 = u32::MAX;
+        let mut first_made = vec![NONE; positions.len()];
+        let mut next_made: Vec<u32> = Vec::with_capacity(positions.len());
+        // Points met by more than EXACT_DEGREE faces, summarised once each (see `Crowd`).
+        let mut crowds: HashMap<usize, Crowd> = HashMap::new();
+        let around = |p: usize| faces.around(p);
+        // A corner's normal from the faces around its point, when they are few (each corner on its
+        // own: the corners of a run of triangles are computed on all cores, then joined in order).
+        let exact = |t: usize, v: u32| -> Option<Vec3> {
+            let around = around(point(v));
+            (around.len() <= EXACT_DEGREE).then(|| {
+                let mut sum = Vec3::ZERO;
+                for &g in around {
+                    if unit[t] == Vec3::ZERO || unit[g as usize].dot(unit[t]) >= cos_crease {
+                        sum += weighted[g as usize];
+                    }
+                }
+                corner_normal(sum, around, &unit)
+            })
+        };
+        for (run, tris) in triangles.chunks(1 << 14).enumerate() {
+            let first = run * (1 << 14);
+            let normals: Vec<[Option<Vec3>; 3]> = tris
+                .par_iter()
+                .enumerate()
+                .map(|(k, tri)| tri.map(|v| exact(first + k, v)))
+                .collect();
+            for (k, (tri, corner_normals)) in tris.iter().zip(normals).enumerate() {
+                let t = first + k;
+                let mut out = [0u32; 3];
+                for (corner, &v) in tri.iter().enumerate() {
+                    let n = corner_normals[corner].unwrap_or_else(|| {
+                        let p = point(v);
+                        let sum = crowds
+                            .entry(p)
+                            .or_insert_with(|| Crowd::new(around(p), &weighted, &unit, cos_crease))
+                            .sum_for(unit[t], cos_crease);
+                        corner_normal(sum, around(p), &unit)
+                    });
+                    let mut made = first_made[v as usize];
+                    let mut last = NONE;
+                    while made != NONE && mesh.normals[made as usize] != n {
+                        last = made;
+                        made = next_made[made as usize];
+                    }
+                    if made == NONE {
+                        made = mesh.positions.len() as u32;
+                        mesh.positions.push(positions[v as usize]);
+                        mesh.normals.push(n);
+                        if let (Some(out), Some(colors)) = (&mut mesh.colors, colors) {
+                            out.push(colors[v as usize]);
+                        }
+                        next_made.push(NONE);
+                        match last {
+                            NONE => first_made[v as usize] = made,
+                            _ => next_made[last as usize] = made,
+                        }
+                    }
+                    out[corner] = made;
+                }
+                mesh.triangles.push(out);
+            }
+        }
+        mesh
+    }
+
+    /// Positions, triangles and maybe a colour per position.
+    type Case = (Vec<Vec3>, Vec<[u32; 3]>, Option<Vec<Vec3>>);
+
+    /// A random mesh on a small grid of points (so faces share them, cross creases and are
+    /// sometimes degenerate), with a colour per position when `colors`: positions repeated
+    /// with different colours split points into several entries.
+    fn random_mesh(seed: u64, colors: bool) -> Case {
+        let mut state = seed;
+        let mut next = move |n: u64| {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 33) % n
+        };
+        let grid: Vec<Vec3> = (0..27)
+            .map(|i| Vec3::new((i % 3) as f32, (i / 3 % 3) as f32, (i / 9) as f32 * 0.5))
+            .collect();
+        let count = 40 + next(200) as usize;
+        let positions: Vec<Vec3> = (0..count).map(|_| grid[next(27) as usize]).collect();
+        let colours = colors.then(|| {
+            (0..count)
+                .map(|_| Vec3::splat(next(3) as f32 / 2.0))
+                .collect()
+        });
+        // Without colours the positions of a mesh are welded: keep the first of each.
+        let positions = if colors {
+            positions
+        } else {
+            let mut seen = Vec::new();
+            for p in positions {
+                if !seen.contains(&p) {
+                    seen.push(p);
+                }
+            }
+            seen
+        };
+        let n = positions.len() as u64;
+        let triangles = (0..50 + next(400))
+            .map(|_| [next(n) as u32, next(n) as u32, next(n) as u32])
+            .collect();
+        (positions, triangles, colours)
+    }
+
+    #[test]
+    fn the_parallel_join_matches_the_corner_by_corner_join_to_the_bit() {
+        let crowded = fan(300, -2.0);
+        let mut cases: Vec<Case> = (0..200)
+            .map(|seed| random_mesh(seed, seed % 2 == 1))
+            .collect();
+        cases.push((crowded.0, crowded.1, None));
+        let mut split = 0;
+        for (positions, triangles, colors) in &cases {
+            let parallel = with_colors_and_normals(positions, triangles, colors.as_deref(), true);
+            let serial =
+                serial_smooth_normals(&(positions.clone(), triangles.clone(), colors.clone()));
+            let bits = |m: &Mesh| {
+                let v = |p: &Vec<Vec3>| p.iter().map(|p| p.to_array().map(f32::to_bits)).collect();
+                let c: Option<Vec<[u32; 3]>> = m.colors.as_ref().map(v);
+                (v(&m.positions), v(&m.normals), c, m.triangles.clone())
+            };
+            assert_eq!(bits(&parallel), bits(&serial));
+            split += usize::from(parallel.positions.len() > positions.len());
+        }
+        // The cases do split vertices at creases (else the test would check little).
+        assert!(split > 100, "{split}");
     }
 }

@@ -113,9 +113,8 @@ pub fn read_obj_in_blocks(path: &Path, block: usize) -> Result<ObjRead, ObjError
     if statements.missing_vertex
         || statements
             .triangles
-            .iter()
-            .flatten()
-            .any(|&i| i as usize >= count)
+            .par_iter()
+            .any(|t| t.iter().any(|&i| i as usize >= count))
     {
         // Faces may come before the vertices they name: only now is a missing one known. The
         // text is read again only to say where.
@@ -315,9 +314,9 @@ impl Statements {
         }
         drop(self.colors);
         drop(self.positions);
-        for i in triangles.iter_mut().flatten() {
-            *i = new_index[*i as usize];
-        }
+        triangles
+            .par_iter_mut()
+            .for_each(|t| *t = t.map(|i| new_index[i as usize]));
         triangles.shrink_to_fit();
         let corner_normals = if self.corner_without_normal || self.normals.is_empty() {
             None
@@ -325,19 +324,18 @@ impl Statements {
             let normals = &self.normals;
             let corners: Vec<[Vec3; 3]> = self
                 .normal_corners
-                .iter()
+                .par_iter()
                 .map(|t| t.map(|n| normals[n as usize]))
                 .collect();
             corners
-                .iter()
-                .flatten()
-                .all(|n| n.is_finite() && *n != Vec3::ZERO)
+                .par_iter()
+                .all(|t| t.iter().all(|n| n.is_finite() && *n != Vec3::ZERO))
                 .then_some(corners)
         };
         let corner_uvs = (!self.corner_without_uv && !self.uvs.is_empty()).then(|| {
             let uvs = &self.uvs;
             self.uv_corners
-                .iter()
+                .par_iter()
                 .map(|t| t.map(|k| Vec2::new(uvs[k as usize].x, 1.0 - uvs[k as usize].y)))
                 .collect()
         });
