@@ -8,19 +8,9 @@
 
 mod common;
 
+use common::ply_types::TYPES;
 use proptest::prelude::*;
 use rastray::mesh::load_ply;
-
-const TYPES: [(&str, usize); 8] = [
-    ("char", 1),
-    ("uchar", 1),
-    ("short", 2),
-    ("ushort", 2),
-    ("int", 4),
-    ("uint", 4),
-    ("float", 4),
-    ("double", 8),
-];
 
 /// A value of type `ty` (an index into [`TYPES`]) in the encoding: its text and its bytes.
 fn encode(ty: usize, value: f64, big: bool) -> (String, Vec<u8>) {

@@ -7,6 +7,7 @@
 
 mod common;
 
+use common::ply_types::TYPES;
 use rastray::mesh::load_ply;
 
 /// A small xorshift generator: the same cases on every run.
@@ -24,18 +25,6 @@ impl Rng {
         self.next() % n
     }
 }
-
-/// PLY type names and sizes.
-const TYPES: [(&str, usize); 8] = [
-    ("char", 1),
-    ("uchar", 1),
-    ("short", 2),
-    ("ushort", 2),
-    ("int", 4),
-    ("uint", 4),
-    ("float", 4),
-    ("double", 8),
-];
 
 /// `value` (a whole number that fits the type) as the bytes of type `ty`.
 fn bytes_of(ty: &str, value: i64, big: bool) -> Vec<u8> {

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod model_invariants;
+pub mod ply_types;
 pub mod textured_quad;
 
 use std::path::Path;

@@ -108,16 +108,13 @@ pub fn read_vertices<R: Read, const BIG: bool>(
     let mut done = 0;
     while done < count && stride > 0 {
         let want = (count - done).min((BLOCK_BYTES / stride).max(1) as u64) as usize;
-        let start = source.offset();
-        let block = source
-            .ahead(want * stride)
-            .map_err(|e| (Place::File, PlyProblem::Io(e)))?;
-        let n = want.min(block.len() / stride);
+        let (start, block) = whole_records(source, want, stride)?;
+        let n = block.len() / stride;
         if n == 0 {
             break;
         }
         let (first, attributes) = collector.next_vertex();
-        let runs: Vec<Result<VertexColumns, (usize, PlyProblem)>> = block[..n * stride]
+        let runs: Vec<Result<VertexColumns, (usize, PlyProblem)>> = block
             .par_chunks(TASK_RECORDS * stride)
             .enumerate()
             .map(|(task, bytes)| {
@@ -138,9 +135,7 @@ pub fn read_vertices<R: Read, const BIG: bool>(
         for run in runs {
             match run {
                 Ok(run) => collector.vertices(run),
-                Err((r, problem)) => {
-                    return Err((Place::Byte(start + (r * stride) as u64), problem));
-                }
+                Err((r, problem)) => return Err((record_place(start, r, stride), problem)),
             }
         }
         source.consume(n * stride);
@@ -170,15 +165,11 @@ pub fn read_faces<R: Read, const BIG: bool>(
         if want == 0 {
             break;
         }
-        let start = source.offset();
-        let block = source
-            .ahead(want * stride)
-            .map_err(|e| (Place::File, PlyProblem::Io(e)))?;
-        let n = want.min(block.len() / stride);
+        let (start, block) = whole_records(source, want, stride)?;
+        let n = block.len() / stride;
         if n == 0 {
             break;
         }
-        let block = &block[..n * stride];
         let read = collector.fixed_faces(n, |triangles, run| {
             let tasks: Vec<Result<usize, (usize, PlyProblem)>> = block
                 .par_chunks(TASK_RECORDS * stride)
@@ -208,9 +199,7 @@ pub fn read_faces<R: Read, const BIG: bool>(
                 match result {
                     Ok(r) if r == whole => read += r,
                     Ok(r) => return Ok(read + r),
-                    Err((r, problem)) => {
-                        return Err((Place::Byte(start + (r * stride) as u64), problem));
-                    }
+                    Err((r, problem)) => return Err((record_place(start, r, stride), problem)),
                 }
             }
             Ok(read)
@@ -222,6 +211,26 @@ pub fn read_faces<R: Read, const BIG: bool>(
         }
     }
     Ok(done)
+}
+
+/// The whole records of `stride` bytes among the next `want` in `source` (fewer where the file
+/// ends), and the offset of the first: a block the fast paths decode. Nothing is consumed.
+fn whole_records<R: Read>(
+    source: &mut ByteSource<R>,
+    want: usize,
+    stride: usize,
+) -> Result<(u64, &[u8]), (Place, PlyProblem)> {
+    let start = source.offset();
+    let block = source
+        .ahead(want * stride)
+        .map_err(|e| (Place::File, PlyProblem::Io(e)))?;
+    let whole = block.len() / stride * stride;
+    Ok((start, &block[..whole.min(want * stride)]))
+}
+
+/// Where record `r` of a block that begins at byte `start` begins.
+fn record_place(start: u64, r: usize, stride: usize) -> Place {
+    Place::Byte(start + (r * stride) as u64)
 }
 
 /// The bytes of the number 3 as a list length of type `ty` (the first `ty.size()` of them).
