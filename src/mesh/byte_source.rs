@@ -35,6 +35,61 @@ impl ByteSource<Take<File>> {
     }
 }
 
+impl ByteSource<Take<File>> {
+    /// The next `n` bytes (fewer when the file or its limit ends first) in a vector of their
+    /// own, consumed: those buffered are copied, the rest read straight into the vector (fresh
+    /// zeroed pages, never filled by hand) in pieces read in parallel, so that two cores share
+    /// the copying and the page faults.
+    pub fn take_vec(&mut self, n: usize) -> std::io::Result<Vec<u8>> {
+        use std::io::{Seek, SeekFrom};
+        use std::os::unix::fs::FileExt;
+
+        use rayon::prelude::*;
+
+        let buffered = (self.end - self.start).min(n);
+        let limit = self.reader.limit();
+        let rest = ((n - buffered) as u64).min(limit) as usize;
+        let mut out = vec![0u8; buffered + rest];
+        out[..buffered].copy_from_slice(&self.buf[self.start..self.start + buffered]);
+        self.consume(buffered);
+        // All that was buffered is consumed (or nothing more is read): the file stands at
+        // `offset`.
+        let (file, from) = (self.reader.get_ref(), self.offset);
+        let pieces: Vec<std::io::Result<usize>> = out[buffered..]
+            .par_chunks_mut(TAKE_PIECE)
+            .enumerate()
+            .map(|(k, piece)| {
+                let mut done = 0;
+                while done < piece.len() {
+                    match file.read_at(&mut piece[done..], from + (k * TAKE_PIECE + done) as u64) {
+                        Ok(0) => break,
+                        Ok(got) => done += got,
+                        Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                        Err(e) => return Err(e),
+                    }
+                }
+                Ok(done)
+            })
+            .collect();
+        let mut read = 0;
+        for piece in pieces {
+            let got = piece?;
+            read += got;
+            if got < TAKE_PIECE {
+                break;
+            }
+        }
+        out.truncate(buffered + read);
+        self.reader.get_mut().seek(SeekFrom::Current(read as i64))?;
+        self.reader.set_limit(limit - read as u64);
+        self.offset += read as u64;
+        Ok(out)
+    }
+}
+
+/// Bytes one task of [`ByteSource::take_vec`] reads.
+const TAKE_PIECE: usize = 1 << 22;
+
 impl<R: Read> ByteSource<R> {
     /// A source reading `reader` from file offset 0.
     pub fn new(reader: R) -> ByteSource<R> {

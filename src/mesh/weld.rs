@@ -1,144 +1,357 @@
-//! Welding: vertices with bit-identical keys (a position, or a position and a colour) merged
-//! into one, so that normals computed from the faces can smooth across the seams exporters
-//! split vertices at. One open-addressing table of `u64` slots, each the index of a kept key and
-//! a tag of its hash: a probe reads the key only when the tags agree, and the table stays at
-//! most half full.
+//! Welding: keys (a position's coordinate bits, or a position's and a colour's) that agree in
+//! every bit merged into one, numbered in order of first sight, so that normals computed from
+//! the faces can smooth across the seams exporters split vertices at. One welder serves every
+//! format: a binary STL's corners (each position named about six times), an ASCII STL's and a
+//! PLY's vertices.
+//!
+//! A table of a large mesh's keys misses the cache on nearly every look-up, so the keys are
+//! split by their hash into buckets small enough that each bucket's table stays in one core's
+//! cache, and the buckets are welded in parallel. Each bucket holds its keys in file order, so
+//! the first of equal keys it meets is the first in the file; the distinct keys are then
+//! numbered by the place of that first one, which is their order of first sight.
 
-/// Keys of `N` 32-bit words, merged when every bit agrees, with the index each was given.
-///
-/// Invariant: `keys` holds each distinct key once, in order of first sight; every non-zero slot
-/// is `tag << 32 | (index + 1)` for a key at `keys[index]` whose hash has `tag` in its high bits;
-/// fewer than half the slots are full; every `recent` entry with a non-zero `index + 1` holds a
-/// key and the index it was given.
-#[derive(Debug)]
-pub struct Welder<const N: usize> {
-    slots: Vec<u64>,
-    keys: Vec<[u32; N]>,
-    /// The keys met lately, by the high bits of their hash (direct-mapped, 16 Ki entries, or
-    /// as many as `slots` when that is fewer): a mesh names each corner about six times, mostly
-    /// in faces close together in the file, so most lookups end here without touching the
-    /// large table.
-    recent: Vec<([u32; N], u32)>,
-    /// 64 − the bits of the hash that choose an entry of `recent`.
-    recent_shift: u32,
+use std::ops::Range;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use rayon::prelude::*;
+
+/// Keys a bucket holds on average: its keys and table stay within a core's 2 MiB cache.
+const BUCKET_KEYS: usize = 1 << 13;
+
+/// Most bits of the hash that choose a bucket (4,096 buckets, 16 bits a key to name one).
+const MOST_BUCKET_BITS: u32 = 12;
+
+/// Keys one part of a pass takes, at least; parts are whole 64-bit words of [`Firsts`].
+const LEAST_PART: usize = 1 << 14;
+
+/// The bucket of a key that is not used.
+const UNUSED: u16 = u16::MAX;
+
+/// The bucket of a key equal to one met shortly before in its part.
+const SAME: u16 = u16::MAX - 1;
+
+/// Entries of the table of keys met lately, in each part: a mesh names each position about six
+/// times, mostly in faces close together in the file, so most repeats are found there and
+/// never reach a bucket.
+const RECENT: usize = 1 << 12;
+
+/// The number [`weld`] gives a key that is not used.
+pub const NOT_USED: u32 = u32::MAX;
+
+/// Welds the keys `0..index.len()` (`key(i)` is key `i`; only those where `used(i)` count):
+/// writes to `index[i]` the number of key `i`'s distinct key, numbered in order of first sight
+/// (or [`NOT_USED`]), and returns `kept(first)` for the first key `first` of each distinct
+/// key, in that order (so `kept` is called on ascending keys `i` with `index[i]` 0, 1, 2, …).
+pub fn weld<const N: usize, T: Copy + Default + Send>(
+    index: &mut [u32],
+    key: impl Fn(usize) -> [u32; N] + Sync,
+    used: impl Fn(usize) -> bool + Sync,
+    kept: impl Fn(usize) -> T + Sync,
+) -> Vec<T> {
+    let count = index.len();
+    let part = count
+        .div_ceil(4 * rayon::current_num_threads())
+        .max(LEAST_PART)
+        .next_multiple_of(64);
+    let parts: Vec<Range<usize>> = (0..count)
+        .step_by(part)
+        .map(|start| start..(start + part).min(count))
+        .collect();
+    let bits = (count / BUCKET_KEYS).max(1).ilog2().min(MOST_BUCKET_BITS);
+    // Each key's bucket (or [`SAME`], with the earlier key it equals in `index`), and how many
+    // keys of each part each bucket takes.
+    let mut buckets = vec![0u16; count];
+    let counts: Vec<Vec<u32>> = buckets
+        .par_chunks_mut(part)
+        .zip(index.par_chunks_mut(part))
+        .zip(&parts)
+        .map(|((out, same), range)| {
+            let mut counts = vec![0u32; 1 << bits];
+            let mut recent = [([0u32; N], u32::MAX); RECENT];
+            for ((b, same), i) in out.iter_mut().zip(same).zip(range.clone()) {
+                *b = if used(i) {
+                    let k = key(i);
+                    let h = hash(&k);
+                    let seen = &mut recent[(h >> 20) as usize % RECENT];
+                    if seen.1 != u32::MAX && seen.0 == k {
+                        *same = seen.1;
+                        SAME
+                    } else {
+                        *seen = (k, i as u32);
+                        let b = if bits == 0 {
+                            0
+                        } else {
+                            (h >> (64 - bits)) as usize
+                        };
+                        counts[b] += 1;
+                        b as u16
+                    }
+                } else {
+                    UNUSED
+                };
+            }
+            counts
+        })
+        .collect();
+    // Where each part's keys begin in each bucket: buckets one after another, each holding its
+    // parts' keys in part order.
+    let mut starts = vec![vec![0usize; 1 << bits]; parts.len()];
+    let mut total = 0;
+    for b in 0..1 << bits {
+        for p in 0..parts.len() {
+            starts[p][b] = total;
+            total += counts[p][b] as usize;
+        }
+    }
+    let mut keys = vec![[0u32; N]; total];
+    let mut at = vec![0u32; total];
+    scatter(&mut keys, &mut at, &counts, &parts, &buckets, &key);
+    // Each bucket's keys, welded: `at` becomes the first of each key's equals.
+    let firsts = Firsts::new(count);
+    let mut bucket_keys = Vec::with_capacity(1 << bits);
+    let (mut keys_left, mut at_left) = (&keys[..], &mut at[..]);
+    for b in 0..1 << bits {
+        let n = counts.iter().map(|c| c[b] as usize).sum();
+        let (k, rest) = keys_left.split_at(n);
+        let (a, rest_at) = at_left.split_at_mut(n);
+        bucket_keys.push((k, a));
+        (keys_left, at_left) = (rest, rest_at);
+    }
+    bucket_keys
+        .into_par_iter()
+        .for_each_init(Vec::new, |table, (keys, at)| {
+            weld_bucket(keys, at, table, &firsts)
+        });
+    drop(keys);
+    let ranks = firsts.ranks();
+    let mut order = vec![T::default(); ranks.distinct() as usize];
+    let mut order_parts = Vec::with_capacity(parts.len());
+    let mut order_left = &mut order[..];
+    for range in &parts {
+        let (mine, rest) =
+            order_left.split_at_mut((ranks.rank(range.end) - ranks.rank(range.start)) as usize);
+        order_parts.push(mine);
+        order_left = rest;
+    }
+    // Each key's number: the rank of its first among the firsts.
+    index
+        .par_chunks_mut(part)
+        .zip(buckets.par_chunks(part))
+        .zip(order_parts)
+        .zip(starts)
+        .zip(&parts)
+        .for_each(|((((index, buckets), order), mut next), range)| {
+            let base = ranks.rank(range.start);
+            for (j, (&b, i)) in buckets.iter().zip(range.clone()).enumerate() {
+                index[j] = match b {
+                    UNUSED => NOT_USED,
+                    SAME => index[index[j] as usize - range.start],
+                    _ => {
+                        let first = at[next[b as usize]];
+                        next[b as usize] += 1;
+                        let number = ranks.rank(first as usize);
+                        if first as usize == i {
+                            order[(number - base) as usize] = kept(i);
+                        }
+                        number
+                    }
+                };
+            }
+        });
+    order
 }
 
-/// Most bits of the hash that choose an entry of [`Welder::recent`]. A small mesh gets fewer,
-/// so that measuring each of 313,713 boxes does not clear 256 KiB each (80 GB in all: most of
-/// `info`'s 43 s on that scene).
-const RECENT_BITS: u32 = 14;
+/// One part's share of one bucket: keys and their places.
+type Stretch<'a, const N: usize> = (&'a mut [[u32; N]], &'a mut [u32]);
 
-/// Keys looked up together by [`Welder::index_all`].
-pub const BATCH: usize = 16;
-
-impl<const N: usize> Welder<N> {
-    /// A welder expecting about `distinct` keys (it grows past that as needed).
-    pub fn with_capacity(distinct: usize) -> Welder<N> {
-        let slots = (2 * distinct.max(8)).next_power_of_two();
-        let recent_bits = RECENT_BITS.min(slots.trailing_zeros());
-        Welder {
-            slots: vec![0; slots],
-            keys: Vec::with_capacity(distinct),
-            recent: vec![([0; N], 0); 1 << recent_bits],
-            recent_shift: 64 - recent_bits,
+/// Copies each used key, and its place, into its bucket's stretch of `keys` and `at` (each part
+/// in its own stretch of the bucket, in file order).
+fn scatter<const N: usize>(
+    keys: &mut [[u32; N]],
+    at: &mut [u32],
+    counts: &[Vec<u32>],
+    parts: &[Range<usize>],
+    buckets: &[u16],
+    key: &(impl Fn(usize) -> [u32; N] + Sync),
+) {
+    let mut stretches: Vec<Vec<Stretch<N>>> = parts.iter().map(|_| Vec::new()).collect();
+    let (mut keys, mut at) = (keys, at);
+    for b in 0..counts.first().map_or(0, Vec::len) {
+        for (p, counts) in counts.iter().enumerate() {
+            let n = counts[b] as usize;
+            let (k, rest) = std::mem::take(&mut keys).split_at_mut(n);
+            let (a, rest_at) = std::mem::take(&mut at).split_at_mut(n);
+            stretches[p].push((k, a));
+            (keys, at) = (rest, rest_at);
         }
     }
-
-    /// The index of `key`: the one it was given when first seen, or the next one now.
-    #[inline]
-    pub fn index(&mut self, key: [u32; N]) -> u32 {
-        let hash = hash(&key);
-        let entry = (hash >> self.recent_shift) as usize;
-        let (seen, plus_one) = self.recent[entry];
-        if plus_one != 0 && seen == key {
-            return plus_one - 1;
-        }
-        let index = self.probe(key, hash);
-        self.recent[entry] = (key, index + 1);
-        index
-    }
-
-    /// The indices of `keys` (at most [`BATCH`] of them), written to `out`: [`Welder::index`]
-    /// of each in turn, with the large table's slots for the keys not met lately read first,
-    /// together. A large table misses the cache (and the TLB) on nearly every probe; loads that
-    /// do not wait on one another overlap, so a batch waits about as long as one probe.
-    #[inline]
-    pub fn index_all(&mut self, keys: &[[u32; N]], out: &mut [u32]) {
-        let mask = self.slots.len() - 1;
-        let mut warm = 0u64;
-        for key in keys {
-            let hash = hash(key);
-            let (seen, plus_one) = self.recent[(hash >> self.recent_shift) as usize];
-            if plus_one == 0 || seen != *key {
-                let slot = self.slots[hash as usize & mask];
-                // The key a full slot names is read by the probe too.
-                let index = (slot as u32).wrapping_sub(1) as usize;
-                warm ^= slot ^ self.keys.get(index).map_or(0, |k| k[0] as u64);
-            }
-        }
-        std::hint::black_box(warm);
-        for (key, out) in keys.iter().zip(out) {
-            *out = self.index(*key);
-        }
-    }
-
-    /// The index of `key` (whose hash is `hash`) in the large table, added when missing.
-    fn probe(&mut self, key: [u32; N], hash: u64) -> u32 {
-        let tag = hash >> 32;
-        let mask = self.slots.len() - 1;
-        let mut at = hash as usize & mask;
-        loop {
-            let slot = self.slots[at];
-            if slot == 0 {
-                break;
-            }
-            if slot >> 32 == tag {
-                let index = (slot as u32 - 1) as usize;
-                if self.keys[index] == key {
-                    return index as u32;
+    stretches
+        .into_par_iter()
+        .zip(parts)
+        .for_each(|(mut stretches, range)| {
+            let mut next = vec![0usize; stretches.len()];
+            for i in range.clone() {
+                let b = buckets[i];
+                if b != UNUSED && b != SAME {
+                    let (keys, at) = &mut stretches[b as usize];
+                    let n = &mut next[b as usize];
+                    keys[*n] = key(i);
+                    at[*n] = i as u32;
+                    *n += 1;
                 }
             }
-            at = (at + 1) & mask;
-        }
-        let index = self.keys.len() as u32;
-        self.slots[at] = tag << 32 | (index as u64 + 1);
-        self.keys.push(key);
-        if 2 * self.keys.len() >= self.slots.len() {
-            self.grow();
-        }
-        index
-    }
+        });
+}
 
-    /// The distinct keys, in order of first sight (key `i` was given index `i`).
-    pub fn into_keys(self) -> Vec<[u32; N]> {
-        self.keys
-    }
-
-    /// Doubles the table, placing every key again.
-    fn grow(&mut self) {
-        let mut slots = vec![0u64; self.slots.len() * 2];
-        let mask = slots.len() - 1;
-        for (index, key) in self.keys.iter().enumerate() {
-            let hash = hash(key);
-            let mut at = hash as usize & mask;
-            while slots[at] != 0 {
-                at = (at + 1) & mask;
+/// Welds one bucket's keys (in file order, `at` their places): each place becomes the place of
+/// the first equal key, and each first is marked in `firsts`. `table` is scratch space.
+fn weld_bucket<const N: usize>(
+    keys: &[[u32; N]],
+    at: &mut [u32],
+    table: &mut Vec<u32>,
+    firsts: &Firsts,
+) {
+    let slots = (2 * keys.len()).next_power_of_two().max(2);
+    let mask = slots - 1;
+    table.clear();
+    table.resize(slots, 0);
+    // Open addressing on the hash's low bits: each full slot is the index + 1 of a first.
+    for (e, key) in keys.iter().enumerate() {
+        let mut slot = hash(key) as usize & mask;
+        loop {
+            let first = table[slot];
+            if first == 0 {
+                table[slot] = e as u32 + 1;
+                firsts.mark(at[e] as usize);
+                break;
             }
-            slots[at] = (hash >> 32) << 32 | (index as u64 + 1);
+            if keys[first as usize - 1] == *key {
+                at[e] = at[first as usize - 1];
+                break;
+            }
+            slot = (slot + 1) & mask;
         }
-        self.slots = slots;
     }
 }
 
-/// The positions whose coordinates have the bits of `keys`.
-pub fn positions_of(keys: Vec<[u32; 3]>) -> Vec<glam::Vec3> {
-    keys.into_iter()
+/// One bit a key, set for the first of each distinct key.
+struct Firsts(Vec<AtomicU64>);
+
+impl Firsts {
+    fn new(count: usize) -> Firsts {
+        Firsts((0..count.div_ceil(64)).map(|_| AtomicU64::new(0)).collect())
+    }
+
+    fn mark(&self, i: usize) {
+        self.0[i / 64].fetch_or(1 << (i % 64), Ordering::Relaxed);
+    }
+
+    fn ranks(self) -> Ranks {
+        let words: Vec<u64> = self.0.into_iter().map(AtomicU64::into_inner).collect();
+        let mut before = Vec::with_capacity(words.len() + 1);
+        let mut sum = 0u32;
+        for w in &words {
+            before.push(sum);
+            sum += w.count_ones();
+        }
+        before.push(sum);
+        Ranks { words, before }
+    }
+}
+
+/// The firsts, counted: how many lie before any key.
+struct Ranks {
+    words: Vec<u64>,
+    /// Firsts before each word (and, last, all of them).
+    before: Vec<u32>,
+}
+
+impl Ranks {
+    /// Firsts among keys `0..i`.
+    #[inline]
+    fn rank(&self, i: usize) -> u32 {
+        let (w, bit) = (i / 64, i % 64);
+        if bit == 0 {
+            return self.before[w];
+        }
+        self.before[w] + (self.words[w] & ((1u64 << bit) - 1)).count_ones()
+    }
+
+    fn distinct(&self) -> u32 {
+        *self.before.last().expect("one count a word, and the total")
+    }
+}
+
+/// Vertices (or their keys), and triangles as indices into them.
+pub type Indexed<T> = (Vec<T>, Vec<[u32; 3]>);
+
+/// The vertices `triangles` use with distinct keys (`key(&vertices[i])` is vertex `i`'s), in
+/// file order (each key at the place of the first used vertex that has it), and the triangles
+/// re-indexed onto them. When every vertex is used and no key repeats, both come back as they
+/// were, uncopied.
+pub fn weld_used<T: Copy + Send + Sync, const N: usize>(
+    vertices: Vec<T>,
+    key: impl Fn(&T) -> [u32; N] + Sync,
+    mut triangles: Vec<[u32; 3]>,
+) -> Indexed<T> {
+    let used = used_vertices(vertices.len(), &triangles);
+    let mut index = vec![0u32; vertices.len()];
+    let kept = weld(
+        &mut index,
+        |i| key(&vertices[i]),
+        |i| used[i / 64] >> (i % 64) & 1 == 1,
+        |i| i as u32,
+    );
+    if kept.len() == vertices.len() {
+        return (vertices, triangles);
+    }
+    let kept = kept.iter().map(|&i| vertices[i as usize]).collect();
+    let share = triangles
+        .len()
+        .div_ceil(rayon::current_num_threads())
+        .max(1);
+    triangles.par_chunks_mut(share).for_each(|part| {
+        for t in part {
+            *t = t.map(|i| index[i as usize]);
+        }
+    });
+    (kept, triangles)
+}
+
+/// One bit a vertex, set when a triangle uses it.
+fn used_vertices(vertices: usize, triangles: &[[u32; 3]]) -> Vec<u64> {
+    let words = vertices.div_ceil(64);
+    let share = triangles
+        .len()
+        .div_ceil(rayon::current_num_threads())
+        .max(1);
+    triangles
+        .par_chunks(share)
+        .map(|part| {
+            let mut bits = vec![0u64; words];
+            for &i in part.iter().flatten() {
+                bits[i as usize / 64] |= 1 << (i % 64);
+            }
+            bits
+        })
+        .reduce(
+            || vec![0u64; words],
+            |mut a, b| {
+                a.iter_mut().zip(&b).for_each(|(a, b)| *a |= b);
+                a
+            },
+        )
+}
+
+/// The positions whose coordinates have the bits `keys`.
+pub fn positions_of(keys: &[[u32; 3]]) -> Vec<glam::Vec3> {
+    keys.par_iter()
         .map(|k| glam::Vec3::from_array(k.map(f32::from_bits)))
         .collect()
 }
 
-/// A multiply-xorshift hash of a key's words: the low bits choose the slot, the high 32 are
-/// the tag.
+/// A multiply-xorshift hash of a key's words: the high bits choose the bucket, the low bits
+/// the slot.
 #[inline]
 pub fn hash<const N: usize>(key: &[u32; N]) -> u64 {
     const K: u64 = 0x9e37_79b9_7f4a_7c15;
@@ -162,36 +375,76 @@ pub fn coordinate_bits(x: f32) -> u32 {
 mod tests {
     use super::*;
 
+    /// What one table, looked up key by key, gives.
+    fn welded_one_by_one(keys: &[[u32; 3]], used: impl Fn(usize) -> bool) -> (Vec<u32>, Vec<u32>) {
+        let mut seen = std::collections::HashMap::new();
+        let mut firsts = Vec::new();
+        let index = (0..keys.len())
+            .map(|i| {
+                if !used(i) {
+                    return NOT_USED;
+                }
+                *seen.entry(keys[i]).or_insert_with(|| {
+                    firsts.push(i as u32);
+                    firsts.len() as u32 - 1
+                })
+            })
+            .collect();
+        (index, firsts)
+    }
+
     #[test]
-    fn equal_keys_share_an_index_in_order_of_first_sight_through_growth() {
-        let mut welder = Welder::<3>::with_capacity(1);
-        let keys: Vec<[u32; 3]> = (0..1000u32).map(|i| [i % 300, i % 7, 0]).collect();
-        let mut indices = vec![0; keys.len()];
-        for (keys, out) in keys.chunks(BATCH).zip(indices.chunks_mut(BATCH)) {
-            welder.index_all(keys, out);
-        }
-        let distinct = welder.into_keys();
-        for (key, index) in keys.iter().zip(&indices) {
-            assert_eq!(&distinct[*index as usize], key);
-        }
-        let mut sorted = distinct.clone();
-        sorted.sort();
-        sorted.dedup();
-        assert_eq!(sorted.len(), distinct.len(), "each key once");
-        assert_eq!(indices[0], 0);
-        assert_eq!(indices[1], 1);
-        // Looked up one at a time, the same keys give the same indices.
-        for (key, index) in keys.iter().zip(&indices) {
-            assert_eq!(welder_again(&distinct, *key), *index);
+    fn equal_keys_share_a_number_in_order_of_first_sight_across_buckets_and_parts() {
+        // 300,000 keys whose values repeat in a scattered order: many buckets and parts.
+        let keys: Vec<[u32; 3]> = (0..300_000u32)
+            .map(|i| [(i * 7919) % 65_537, i % 3, 0])
+            .collect();
+        let used = |i: usize| i % 11 != 5;
+        let mut index = vec![0; keys.len()];
+        let firsts = weld(&mut index, |i| keys[i], used, |i| i as u32);
+        let (expected_index, expected_firsts) = welded_one_by_one(&keys, used);
+        assert_eq!(firsts, expected_firsts);
+        assert_eq!(index, expected_index);
+    }
+
+    #[test]
+    fn a_few_keys_weld_in_one_bucket() {
+        let keys = [[1, 2, 3], [4, 5, 6], [1, 2, 3], [7, 8, 9], [4, 5, 6]];
+        let mut index = vec![0; keys.len()];
+        let firsts = weld(&mut index, |i| keys[i], |_| true, |i| i as u32);
+        assert_eq!(index, vec![0, 1, 0, 2, 1]);
+        assert_eq!(firsts, vec![0, 1, 3]);
+    }
+
+    #[test]
+    fn unused_vertices_go_and_repeats_join_the_first_in_file_order() {
+        // Vertex 1 is unused; 3 repeats 0's key; 4 repeats 2's.
+        let keys = vec![[5, 0], [9, 9], [7, 0], [5, 0], [7, 0]];
+        let triangles = vec![[3, 2, 4], [0, 4, 2]];
+        let (kept, triangles) = weld_used(keys, |k| *k, triangles);
+        assert_eq!(kept, vec![[5, 0], [7, 0]]);
+        assert_eq!(triangles, vec![[0, 1, 1], [0, 1, 1]]);
+    }
+
+    #[test]
+    fn many_keys_across_buckets_weld_as_one_table_would() {
+        // 40,000 vertices whose keys repeat every 15,000: enough for several buckets.
+        let keys: Vec<[u32; 3]> = (0..40_000u32).map(|i| [i % 15_000, 1, 2]).collect();
+        let triangles: Vec<[u32; 3]> = (0..39_998u32).map(|i| [i, i + 1, i + 2]).collect();
+        let (kept, welded) = weld_used(keys.clone(), |k| *k, triangles.clone());
+        assert_eq!(kept.len(), 15_000);
+        assert_eq!(kept, keys[..15_000]);
+        for (old, new) in triangles.iter().zip(&welded) {
+            assert_eq!(old.map(|i| keys[i as usize]), new.map(|i| kept[i as usize]));
         }
     }
 
-    fn welder_again(distinct: &[[u32; 3]], key: [u32; 3]) -> u32 {
-        let mut welder = Welder::<3>::with_capacity(1);
-        for &k in distinct {
-            welder.index(k);
-        }
-        welder.index(key)
+    #[test]
+    fn distinct_used_keys_come_back_uncopied() {
+        let keys = vec![[1u32, 0], [2, 0], [3, 0]];
+        let triangles = vec![[0, 1, 2]];
+        let (kept, same) = weld_used(keys.clone(), |k| *k, triangles.clone());
+        assert_eq!((kept, same), (keys, triangles));
     }
 
     #[test]

@@ -10,9 +10,9 @@ use rayon::prelude::*;
 
 use super::columns::VertexColumns;
 use super::plan::{FaceLists, SLOTS, VertexAttributes};
-use super::weld_used::weld_used;
+
 use crate::mesh::ModelGeometry;
-use crate::mesh::weld::coordinate_bits;
+use crate::mesh::weld::{coordinate_bits, weld_used};
 
 /// What has been read so far.
 ///

@@ -19,7 +19,6 @@ mod fixed;
 mod header;
 mod plan;
 mod scalar;
-mod weld_used;
 
 use std::io::{BufReader, Read};
 use std::path::{Path, PathBuf};

@@ -18,7 +18,7 @@ use std::io::BufRead;
 
 use super::error::{StlProblem, coordinate_problem};
 use crate::mesh::Place;
-use crate::mesh::weld::{Welder, coordinate_bits};
+use crate::mesh::weld::{Indexed, coordinate_bits};
 
 /// Where the reader is in the grammar.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -35,14 +35,15 @@ enum State {
     Closed,
 }
 
-/// Reads every solid of the text `reader` gives, welding the corners into `welder` and
-/// appending the triangles to `triangles`, at most `limit` of them.
+/// Reads every solid of the text `reader` gives: the corners' coordinate bits (as
+/// [`coordinate_bits`] gives them), one a `vertex` line, and the triangles as indices into
+/// them, at most `limit` triangles.
 pub fn read_solids(
     reader: &mut impl BufRead,
-    welder: &mut Welder<3>,
-    triangles: &mut Vec<[u32; 3]>,
     limit: u64,
-) -> Result<(), (Place, StlProblem)> {
+) -> Result<Indexed<[u32; 3]>, (Place, StlProblem)> {
+    let mut keys = Vec::new();
+    let mut triangles = Vec::new();
     let mut state = State::Outside;
     let mut number = 0;
     let mut facet_line = 0;
@@ -102,7 +103,8 @@ pub fn read_solids(
                 if words.next().is_some() {
                     return Err(fail(StlProblem::BadVertex));
                 }
-                corners.push(welder.index(key));
+                corners.push(keys.len() as u32);
+                keys.push(key);
                 State::Loop
             }
             State::Loop if is("endloop") => {
@@ -122,7 +124,7 @@ pub fn read_solids(
         };
     }
     let missing = match state {
-        State::Outside | State::Solid => return Ok(()),
+        State::Outside | State::Solid => return Ok((keys, triangles)),
         State::Facet => "`outer loop`",
         State::Loop => "`endloop`",
         State::Closed => "`endfacet`",

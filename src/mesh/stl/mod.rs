@@ -5,8 +5,9 @@
 //! that smooth normals and crease angles work; the file's facet normals are not read: normals
 //! come from the faces.
 //!
-//! Memory: the result (12 bytes a distinct position, 12 a triangle) and the welding table (16
-//! bytes a distinct position, at most half full); the file streams through one 256 KiB buffer.
+//! Memory: the result (12 bytes a distinct position, 12 a triangle) and, while welding, a binary
+//! file's body (50 bytes a triangle) and its corners sorted into buckets (18 bytes a corner)
+//! or an ASCII file's corners (12 bytes each); an ASCII file streams through a 64 KiB buffer.
 
 mod ascii;
 mod binary;
@@ -22,7 +23,7 @@ use super::byte_source::ByteSource;
 use super::geometry::ModelGeometry;
 use super::model_error::{Place, grew};
 use super::model_format::{binary_stl_size, is_ascii_stl};
-use super::weld::{Welder, positions_of};
+use super::weld::{positions_of, weld_used};
 use crate::memory_budget::triangle_cap;
 
 /// How an STL file was written.
@@ -62,8 +63,7 @@ pub fn load_stl(path: &Path) -> Result<StlModel, StlError> {
     let io = |e| fail((Place::File, StlProblem::Io(e)));
     let (mut source, size) = ByteSource::open_model(path).map_err(io)?;
     let head = source.ahead(512).map_err(io)?;
-    let mut triangles = Vec::new();
-    let (welder, encoding) = if binary_stl_size(head) == Some(size) {
+    let (positions, triangles, encoding) = if binary_stl_size(head) == Some(size) {
         let count = u32::from_le_bytes([head[80], head[81], head[82], head[83]]);
         if count as u64 > triangle_cap() {
             return Err(fail((
@@ -73,19 +73,14 @@ pub fn load_stl(path: &Path) -> Result<StlModel, StlError> {
                 },
             )));
         }
-        // A closed mesh has about half as many vertices as triangles.
-        let mut welder = Welder::with_capacity(count as usize / 2);
-        triangles.reserve_exact(count as usize);
         source.consume(84);
-        binary::read_triangles(&mut source, count, &mut welder, &mut triangles).map_err(fail)?;
-        (welder, StlEncoding::Binary)
+        let (positions, triangles) = binary::read_triangles(&mut source, count).map_err(fail)?;
+        (positions, triangles, StlEncoding::Binary)
     } else if is_ascii_stl(head) {
-        // About 250 bytes of text a facet.
-        let mut welder = Welder::with_capacity((size / 500) as usize);
         let mut reader = BufReader::with_capacity(1 << 16, &mut source);
-        ascii::read_solids(&mut reader, &mut welder, &mut triangles, triangle_cap())
-            .map_err(fail)?;
-        (welder, StlEncoding::Ascii)
+        let (corners, triangles) = ascii::read_solids(&mut reader, triangle_cap()).map_err(fail)?;
+        let (keys, triangles) = weld_used(corners, |k| *k, triangles);
+        (positions_of(&keys), triangles, StlEncoding::Ascii)
     } else if size < 84 {
         return Err(fail((Place::File, StlProblem::TooShort { size })));
     } else {
@@ -104,7 +99,7 @@ pub fn load_stl(path: &Path) -> Result<StlModel, StlError> {
     }
     Ok(StlModel {
         geometry: ModelGeometry {
-            positions: positions_of(welder.into_keys()),
+            positions,
             triangles,
             corner_normals: None,
             colors: None,
