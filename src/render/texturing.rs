@@ -188,6 +188,12 @@ impl<'a> ObjectTextures<'a> {
         self.sample_binding(binding, uv, density, distance, cos)
     }
 
+    /// The texture and sampler of object `object`, when it is drawn textured.
+    #[inline]
+    pub fn binding(&self, object: usize) -> Option<&'a TextureBinding> {
+        self.textured[object].map(|(binding, _)| binding)
+    }
+
     /// The texels of level 0 of object `object`'s texture (0 when untextured), as an `f32`.
     #[inline]
     pub fn texel_count(&self, object: usize) -> f32 {

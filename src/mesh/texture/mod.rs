@@ -23,7 +23,11 @@ pub use error::TextureError;
 pub use ledger::{TextureLedger, decoded_texture_bytes};
 pub use limits::{MAX_TEXTURE_BASE_TEXELS, MAX_TEXTURE_DECLARED_TEXELS, MAX_TEXTURE_SIDE};
 pub use load::load_texture;
+#[cfg(test)]
+pub(crate) use mip_chain::mip_chain;
 pub use sampler::{Filter, MipFilter, Sampler, Wrap};
+pub(crate) use sampler::{neighbours, wrapped_fast};
 pub use texels::Texels;
+pub(crate) use texels::{SrgbTable, U16_STEP};
 pub use texture::{MipLevel, Texture};
 pub use uv_transform::UvTransform;

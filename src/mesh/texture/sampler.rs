@@ -153,7 +153,7 @@ fn is_small(x: f32) -> bool {
 /// divisions a pixel on the Duck, whose minification reads the nearest texel of two levels)
 /// where `texel` is small: a 32-bit one, or a mask on power-of-two sizes.
 #[inline(always)]
-fn wrapped_fast(texel: f32, size: u32, wrap: Wrap) -> u32 {
+pub(crate) fn wrapped_fast(texel: f32, size: u32, wrap: Wrap) -> u32 {
     if !is_small(texel) {
         return wrapped(texel, size, wrap);
     }
@@ -171,7 +171,7 @@ fn wrapped_fast(texel: f32, size: u32, wrap: Wrap) -> u32 {
 /// in a row of `size`: [`wrapped`] of each, with one remainder rather than two, and none on
 /// power-of-two sizes (a mask), as [`wrapped_fast`].
 #[inline(always)]
-fn neighbours(texel: f32, size: u32, wrap: Wrap) -> (u32, u32) {
+pub(crate) fn neighbours(texel: f32, size: u32, wrap: Wrap) -> (u32, u32) {
     if !is_small(texel) {
         return (wrapped(texel, size, wrap), wrapped(texel + 1.0, size, wrap));
     }

@@ -94,6 +94,12 @@ impl SrgbTable {
         })
     }
 
+    /// The linear value of 8-bit sRGB colour code `code`.
+    #[inline(always)]
+    pub fn color(&self, code: u8) -> f32 {
+        self.color[code as usize]
+    }
+
     /// The linear RGBA of an 8-bit sRGB texel: the values decoding the image gives.
     #[inline(always)]
     pub fn decode(&self, [r, g, b, a]: [u8; 4]) -> Vec4 {
@@ -106,10 +112,13 @@ impl SrgbTable {
     }
 }
 
+/// The linear value of one step of a 16-bit channel: a code reads as code × this.
+pub const U16_STEP: f32 = 1.0 / STEPS16;
+
 /// The linear RGBA of a 16-bit texel.
 #[inline(always)]
 pub fn from_u16([r, g, b, a]: [u16; 4]) -> Vec4 {
-    Vec4::new(f32::from(r), f32::from(g), f32::from(b), f32::from(a)) * (1.0 / STEPS16)
+    Vec4::new(f32::from(r), f32::from(g), f32::from(b), f32::from(a)) * U16_STEP
 }
 
 /// `value` clamped to [0, 1] as the nearest 16-bit step (NaN reads as 0).

@@ -2,12 +2,14 @@
 //! footprint of the pixel's ray at its depth (the ray tracer's formula, see
 //! [`crate::render::texturing`]), so Phong and ray tracing read the same texels.
 //!
-//! The footprint and level are worked out in lanes; the texels are then read lane by lane, for
-//! the lanes that are pixels.
+//! The footprint and level are worked out in lanes; where the eight lanes are one textured
+//! object the texels are read in lanes too ([`sample_rgb`]), else lane by lane, for the lanes
+//! that are pixels. Both give the one-point sampler's bits.
 
 use glam::Vec3;
 
 use super::fragments::Fragments;
+use super::lane_sampler::sample_rgb;
 use crate::render::camera::View;
 use crate::render::simd::{Lanes8, V3, WIDTH};
 use crate::render::texturing::ObjectTextures;
@@ -39,10 +41,15 @@ pub fn fragment_texels<L: Lanes8, const K: usize>(
     let distance = fragments.depth * length;
     let cos = normal.normalize_or_zero().dot(rays) / length;
     let texels = L::from_array(objects.map(|o| textures.texel_count(o)));
-    let lod = textures
-        .level_of_detail(texels, uvd.z, distance, cos)
-        .to_array();
-    let (u, v) = (uvd.x.to_array(), uvd.y.to_array());
+    let lod = textures.level_of_detail(texels, uvd.z, distance, cos);
+    // One textured object in all lanes, as mostly: the eight are sampled together.
+    if objects.iter().all(|&o| o == objects[0])
+        && let Some(binding) = textures.binding(objects[0])
+        && let Some(rgb) = sample_rgb(&binding.sampler, &binding.texture, uvd.x, uvd.y, lod)
+    {
+        return rgb;
+    }
+    let (lod, u, v) = (lod.to_array(), uvd.x.to_array(), uvd.y.to_array());
     // Lanes past `count` repeat the last pixel: they take its colour without reading it again.
     let mut colors = [Vec3::ONE; WIDTH];
     for k in 0..fragments.count {

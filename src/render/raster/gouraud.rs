@@ -37,19 +37,24 @@ pub fn render_gouraud(
         geometry,
         per_vertex,
     } = scratch;
+    let colors = world.objects.iter().any(|o| o.mesh.colors.is_some());
     if world.objects.iter().any(|o| o.is_textured()) {
         let mut parts = TexturedParts {
             parts: LitParts::new(world, view.viewer(), per_vertex),
-            uvs: NormalsColorsAndUvs::new(world),
+            uvs: NormalsColorsAndUvs::without_colors(world),
+            colors,
         };
         let shader = TexturedSeparateSpecular {
             plain: SeparateSpecular::new(world),
             view,
             textures: ObjectTextures::new(world, view),
         };
-        return draw::<5>(geometry, world, view, progress, &mut parts, &shader, out);
+        return match colors {
+            true => draw::<5>(geometry, world, view, progress, &mut parts, &shader, out),
+            false => draw::<4>(geometry, world, view, progress, &mut parts, &shader, out),
+        };
     }
-    if world.objects.iter().any(|o| o.mesh.colors.is_some()) {
+    if colors {
         let mut parts = LitParts::new(world, view.viewer(), per_vertex);
         let shader = SeparateSpecular::new(world);
         return draw::<3>(geometry, world, view, progress, &mut parts, &shader, out);

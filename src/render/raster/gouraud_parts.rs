@@ -264,12 +264,14 @@ impl Shader<3> for SeparateSpecular {
     }
 }
 
-/// The vertex stage where some mesh is textured: [`LitParts`]' `D`, `S` and colour, then the
-/// texture coordinates and texel density and the vertex normal of
-/// [`NormalsColorsAndUvs`] (the normal for the footprint's cosine, as Phong takes it).
+/// The vertex stage where some mesh is textured: [`LitParts`]' `D`, `S` and colour (the colour
+/// left out where no mesh has vertex colours, `colors` false), then the texture coordinates and
+/// texel density and the vertex normal of [`NormalsColorsAndUvs::without_colors`] (the normal
+/// for the footprint's cosine, as Phong takes it).
 pub struct TexturedParts<'a> {
     pub parts: LitParts<'a>,
     pub uvs: NormalsColorsAndUvs<'a>,
+    pub colors: bool,
 }
 
 impl Varying for TexturedParts<'_> {
@@ -281,11 +283,12 @@ impl Varying for TexturedParts<'_> {
         let start = out.len();
         self.parts.corners(object, triangles, out);
         let lit = out.split_off(start);
-        let mut more = Vec::with_capacity(3 * triangles.len());
+        let mut more = Vec::with_capacity(2 * triangles.len());
         self.uvs.corners(object, triangles, &mut more);
-        for (lit, more) in lit.chunks_exact(3).zip(more.chunks_exact(3)) {
-            out.extend_from_slice(lit);
-            out.push(more[2]);
+        let kept = if self.colors { 3 } else { 2 };
+        for (lit, more) in lit.chunks_exact(3).zip(more.chunks_exact(2)) {
+            out.extend_from_slice(&lit[..kept]);
+            out.push(more[1]);
             out.push(more[0]);
         }
     }
@@ -303,15 +306,45 @@ pub struct TexturedSeparateSpecular<'a> {
     pub textures: ObjectTextures<'a>,
 }
 
+impl TexturedSeparateSpecular<'_> {
+    /// `albedo ⊙ D + S` of `fragments`, the albedo their material colour times `color` times
+    /// their texture colour (from `normal` and `uvd`), where the object is textured or coloured;
+    /// `D` elsewhere.
+    #[inline(always)]
+    fn shade_parts<L: Lanes8, const K: usize>(
+        &self,
+        fragments: &Fragments<L, K>,
+        [diffuse, specular, normal, uvd]: [V3<L>; 4],
+        color: Option<V3<L>>,
+        row: &mut [Vec3],
+    ) {
+        let objects = &fragments.object;
+        let texels = fragment_texels(&self.textures, self.view, fragments, normal, uvd);
+        let albedo = self.plain.albedo::<L>(objects).mul_elements(texels);
+        let albedo = color.map_or(albedo, |color| albedo.mul_elements(color));
+        let lit = albedo.mul_elements(diffuse);
+        let c = V3::new(lit.x + specular.x, lit.y + specular.y, lit.z + specular.z);
+        fragments.write(self.plain.colored.select(objects, c, diffuse), row);
+    }
+}
+
+/// With vertex colours: `D`, `S`, the colour, (u, v, density), the normal.
 impl Shader<5> for TexturedSeparateSpecular<'_> {
     #[inline(always)]
     fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 5>, row: &mut [Vec3]) {
-        let objects = &fragments.object;
         let [diffuse, specular, color, uvd, normal] = fragments.varying;
-        let texels = fragment_texels(&self.textures, self.view, fragments, normal, uvd);
-        let albedo = self.plain.albedo::<L>(objects).mul_elements(texels);
-        let lit = albedo.mul_elements(color).mul_elements(diffuse);
-        let c = V3::new(lit.x + specular.x, lit.y + specular.y, lit.z + specular.z);
-        fragments.write(self.plain.colored.select(objects, c, diffuse), row);
+        let parts = [diffuse, specular, normal, uvd];
+        self.shade_parts(fragments, parts, Some(color), row);
+    }
+}
+
+/// Where no mesh has vertex colours: `D`, `S`, (u, v, density), the normal. The albedo is the
+/// material colour times the texture's, with no interpolated colour of 1 (not exactly 1 once
+/// interpolated) multiplied in.
+impl Shader<4> for TexturedSeparateSpecular<'_> {
+    #[inline(always)]
+    fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 4>, row: &mut [Vec3]) {
+        let [diffuse, specular, uvd, normal] = fragments.varying;
+        self.shade_parts(fragments, [diffuse, specular, normal, uvd], None, row);
     }
 }

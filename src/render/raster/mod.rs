@@ -10,6 +10,7 @@ mod fragments;
 mod gouraud;
 mod gouraud_parts;
 mod hits;
+mod lane_sampler;
 mod phong;
 mod projected;
 #[cfg(target_arch = "x86_64")]

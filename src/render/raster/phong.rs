@@ -28,26 +28,33 @@ pub fn render_phong(
     out: &mut [Vec3],
 ) -> Result<(), Cancelled> {
     let shader = PhongShader::new(world, view);
-    draw_normals(scratch, world, view, progress, &shader, out)
+    let textured = UncoloredTextures(&shader);
+    draw_normals(scratch, world, view, progress, &shader, &textured, out)
 }
 
 /// Draws with `shader`, the vertex normals as the varying, the vertex colours as a second one
 /// where some mesh of `world` has them, and the texture coordinates as a third where some mesh
-/// is textured.
-fn draw_normals(
+/// is textured (as the second, with `textured`, where no mesh has colours).
+fn draw_normals<S: Shader<1> + Shader<2> + Shader<3>>(
     scratch: &mut RasterScratch,
     world: &World,
     view: &View,
     progress: &Progress,
-    shader: &(impl Shader<1> + Shader<2> + Shader<3>),
+    shader: &S,
+    textured: &impl Shader<2>,
     out: &mut [Vec3],
 ) -> Result<(), Cancelled> {
     let geometry = &mut scratch.geometry;
+    let colored = world.objects.iter().any(|o| o.mesh.colors.is_some());
     if world.objects.iter().any(|o| o.is_textured()) {
+        if !colored {
+            let varyings = &mut NormalsColorsAndUvs::without_colors(world);
+            return draw::<2>(geometry, world, view, progress, varyings, textured, out);
+        }
         let varyings = &mut NormalsColorsAndUvs::new(world);
         return draw::<3>(geometry, world, view, progress, varyings, shader, out);
     }
-    if world.objects.iter().any(|o| o.mesh.colors.is_some()) {
+    if colored {
         let varyings = &mut NormalsAndColors::new(world);
         return draw::<2>(geometry, world, view, progress, varyings, shader, out);
     }
@@ -66,14 +73,16 @@ pub(super) fn render_phong_unpaired(
     out: &mut [Vec3],
 ) -> Result<(), Cancelled> {
     /// `S`, one batch at a time.
-    struct OneAtATime<S>(S);
-    impl<S: Shader<K>, const K: usize> Shader<K> for OneAtATime<S> {
+    struct OneAtATime<'s, S>(&'s S);
+    impl<S: Shader<K>, const K: usize> Shader<K> for OneAtATime<'_, S> {
         fn shade<L: Lanes8>(&self, fragments: &Fragments<L, K>, row: &mut [Vec3]) {
             self.0.shade(fragments, row);
         }
     }
-    let shader = OneAtATime(PhongShader::new(world, view));
-    draw_normals(scratch, world, view, progress, &shader, out)
+    let phong = PhongShader::new(world, view);
+    let uncolored = UncoloredTextures(&phong);
+    let (shader, textured) = (OneAtATime(&phong), OneAtATime(&uncolored));
+    draw_normals(scratch, world, view, progress, &shader, &textured, out)
 }
 
 /// Lights every pixel with its interpolated normal. The surface point is found on the pixel's
@@ -123,9 +132,7 @@ impl Shader<1> for PhongShader<'_> {
 impl Shader<2> for PhongShader<'_> {
     #[inline(always)]
     fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 2>, row: &mut [Vec3]) {
-        let mut material = self.materials.of_lanes(&fragments.object);
-        material.color = self.albedo(fragments, material.color);
-        self.light_fragments(fragments, &material, row);
+        self.shade_albedo::<VertexColors, L, 2>(fragments, row);
     }
 
     const SHADES_TWO: bool = true;
@@ -137,11 +144,7 @@ impl Shader<2> for PhongShader<'_> {
         high: &Fragments<L, 2>,
         row: &mut [Vec3],
     ) {
-        debug_assert_eq!(low.y, high.y);
-        let mut material = self.materials.of_pair::<L>(&low.object, &high.object);
-        let (low_color, high_color) = V3::halves(material.color);
-        material.color = V3::pair(self.albedo(low, low_color), self.albedo(high, high_color));
-        self.light_two(low, high, &material, row);
+        self.shade_two_albedo::<VertexColors, L, 2>(low, high, row);
     }
 }
 
@@ -151,9 +154,7 @@ impl Shader<2> for PhongShader<'_> {
 impl Shader<3> for PhongShader<'_> {
     #[inline(always)]
     fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 3>, row: &mut [Vec3]) {
-        let mut material = self.materials.of_lanes(&fragments.object);
-        material.color = self.textured_albedo(fragments, material.color);
-        self.light_fragments(fragments, &material, row);
+        self.shade_albedo::<ColorsAndTexture, L, 3>(fragments, row);
     }
 
     const SHADES_TWO: bool = true;
@@ -165,13 +166,100 @@ impl Shader<3> for PhongShader<'_> {
         high: &Fragments<L, 3>,
         row: &mut [Vec3],
     ) {
+        self.shade_two_albedo::<ColorsAndTexture, L, 3>(low, high, row);
+    }
+}
+
+/// Phong's shader where some mesh is textured and none has vertex colours: the second varying
+/// is the texture coordinates and density, and the albedo is the material colour times the
+/// texture's colour, the bits [`PhongShader`]'s three varyings give (which multiply no colour
+/// in on meshes without colours).
+struct UncoloredTextures<'s, 'a>(&'s PhongShader<'a>);
+
+impl Shader<2> for UncoloredTextures<'_, '_> {
+    #[inline(always)]
+    fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 2>, row: &mut [Vec3]) {
+        self.0.shade_albedo::<TextureOnly, L, 2>(fragments, row);
+    }
+
+    const SHADES_TWO: bool = true;
+
+    #[inline(always)]
+    fn shade_two<L: Lanes8>(
+        &self,
+        low: &Fragments<L, 2>,
+        high: &Fragments<L, 2>,
+        row: &mut [Vec3],
+    ) {
+        self.0.shade_two_albedo::<TextureOnly, L, 2>(low, high, row);
+    }
+}
+
+/// How Phong finds the albedo of fragments with `K` varyings from their material colours.
+/// Types, not closures: a closure is not inlined into the caller's AVX context.
+trait Albedo<const K: usize> {
+    /// The albedo of `fragments` whose material colours are `color`.
+    fn albedo<L: Lanes8>(phong: &PhongShader, fragments: &Fragments<L, K>, color: V3<L>) -> V3<L>;
+}
+
+/// Times the vertex colour, the second varying ([`PhongShader::albedo`]).
+struct VertexColors;
+
+impl Albedo<2> for VertexColors {
+    #[inline(always)]
+    fn albedo<L: Lanes8>(phong: &PhongShader, fragments: &Fragments<L, 2>, color: V3<L>) -> V3<L> {
+        phong.albedo(fragments, color)
+    }
+}
+
+/// Times the vertex colour and the texture ([`PhongShader::textured_albedo`]).
+struct ColorsAndTexture;
+
+impl Albedo<3> for ColorsAndTexture {
+    #[inline(always)]
+    fn albedo<L: Lanes8>(phong: &PhongShader, fragments: &Fragments<L, 3>, color: V3<L>) -> V3<L> {
+        phong.textured_albedo(fragments, color)
+    }
+}
+
+/// Times the texture, the texture coordinates and density the second varying.
+struct TextureOnly;
+
+impl Albedo<2> for TextureOnly {
+    #[inline(always)]
+    fn albedo<L: Lanes8>(phong: &PhongShader, fragments: &Fragments<L, 2>, color: V3<L>) -> V3<L> {
+        phong.times_texels(fragments, fragments.varying[1], color)
+    }
+}
+
+impl PhongShader<'_> {
+    /// Lights `fragments` with their albedo as `A` finds it, into `row`.
+    #[inline(always)]
+    fn shade_albedo<A: Albedo<K>, L: Lanes8, const K: usize>(
+        &self,
+        fragments: &Fragments<L, K>,
+        row: &mut [Vec3],
+    ) {
+        let mut material = self.materials.of_lanes(&fragments.object);
+        material.color = A::albedo(self, fragments, material.color);
+        self.light_fragments(fragments, &material, row);
+    }
+
+    /// Lights batches `low` and `high` of one row at once with their albedo as `A` finds it.
+    #[inline(always)]
+    fn shade_two_albedo<A: Albedo<K>, L: Lanes8, const K: usize>(
+        &self,
+        low: &Fragments<L, K>,
+        high: &Fragments<L, K>,
+        row: &mut [Vec3],
+    ) {
         debug_assert_eq!(low.y, high.y);
         let mut material = self.materials.of_pair::<L>(&low.object, &high.object);
         let (low_color, high_color) = V3::halves(material.color);
-        // Methods, not closures: a closure is not inlined into the caller's AVX context.
+        // Each batch's albedo alone: the bits of lighting it alone.
         material.color = V3::pair(
-            self.textured_albedo(low, low_color),
-            self.textured_albedo(high, high_color),
+            A::albedo(self, low, low_color),
+            A::albedo(self, high, high_color),
         );
         self.light_two(low, high, &material, row);
     }
@@ -237,7 +325,19 @@ impl<'a> PhongShader<'a> {
     fn textured_albedo<L: Lanes8>(&self, fragments: &Fragments<L, 3>, color: V3<L>) -> V3<L> {
         let tinted = color.mul_elements(fragments.varying[1]);
         let color = self.colored.select(&fragments.object, tinted, color);
-        let (normal, uvd) = (fragments.varying[0], fragments.varying[2]);
+        self.times_texels(fragments, fragments.varying[2], color)
+    }
+
+    /// `color` times the texture colour of `fragments` (the normal their first varying) with
+    /// texture coordinates and density `uvd`.
+    #[inline(always)]
+    fn times_texels<L: Lanes8, const K: usize>(
+        &self,
+        fragments: &Fragments<L, K>,
+        uvd: V3<L>,
+        color: V3<L>,
+    ) -> V3<L> {
+        let normal = fragments.varying[0];
         let texels = fragment_texels(&self.textures, self.view, fragments, normal, uvd);
         color.mul_elements(texels)
     }

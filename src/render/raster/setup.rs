@@ -86,10 +86,11 @@ pub struct BandBuffers {
     /// Per id, whether the band shows the triangle (entry 0, no triangle, is unused).
     pub seen: Vec<bool>,
     /// Per id, the planes of a seen triangle's interpolants (entries of unseen ones are stale),
-    /// for shaders of one varying, two, three and five (see [`PlanesOf`]).
+    /// for shaders of one varying, two, three, four and five (see [`PlanesOf`]).
     pub planes: Vec<Planes<1>>,
     pub planes_two: Vec<Planes<2>>,
     pub planes_three: Vec<Planes<3>>,
+    pub planes_four: Vec<Planes<4>>,
     pub planes_five: Vec<Planes<5>>,
     /// Working space for the planes: the mesh triangles of a run of seen triangles of one
     /// object, their ids, and the varyings at their corners (each triangle's varyings one
@@ -121,6 +122,12 @@ impl PlanesOf<2> for BandBuffers {
 impl PlanesOf<3> for BandBuffers {
     fn planes_of(&mut self) -> &mut Vec<Planes<3>> {
         &mut self.planes_three
+    }
+}
+
+impl PlanesOf<4> for BandBuffers {
+    fn planes_of(&mut self) -> &mut Vec<Planes<4>> {
+        &mut self.planes_four
     }
 }
 

@@ -123,9 +123,12 @@ impl Varying for NormalsAndColors<'_> {
 /// Three values per vertex: the normals and colours of [`NormalsAndColors`], then the texture
 /// coordinates (u, v) with the triangle's texel density as the third component (the same at
 /// its three corners; zeros on an untextured mesh). Phong shading's varyings where some mesh
-/// is textured.
+/// is textured; where no mesh has vertex colours, [`NormalsColorsAndUvs::without_colors`] leaves
+/// the colours out: two values per vertex, the normal and (u, v, density).
 pub struct NormalsColorsAndUvs<'a> {
     normals_and_colors: NormalsAndColors<'a>,
+    /// Whether the colours are among the values.
+    colors: bool,
     world: &'a World,
     textures: ObjectTextures<'a>,
 }
@@ -135,8 +138,17 @@ impl<'a> NormalsColorsAndUvs<'a> {
     pub fn new(world: &'a World) -> NormalsColorsAndUvs<'a> {
         NormalsColorsAndUvs {
             normals_and_colors: NormalsAndColors::new(world),
+            colors: true,
             world,
             textures: ObjectTextures::with_spread(world, 0.0),
+        }
+    }
+
+    /// The normals and texture coordinates of `world`'s meshes, without their colours.
+    pub fn without_colors(world: &'a World) -> NormalsColorsAndUvs<'a> {
+        NormalsColorsAndUvs {
+            colors: false,
+            ..NormalsColorsAndUvs::new(world)
         }
     }
 }
@@ -144,11 +156,21 @@ impl<'a> NormalsColorsAndUvs<'a> {
 impl Varying for NormalsColorsAndUvs<'_> {
     fn corners(&self, object: usize, triangles: &[u32], out: &mut Vec<[Vec3; 3]>) {
         let start = out.len();
-        self.normals_and_colors.corners(object, triangles, out);
-        let two = out.split_off(start);
+        let firsts = match self.colors {
+            true => 2,
+            false => 1,
+        };
+        if self.colors {
+            self.normals_and_colors.corners(object, triangles, out);
+        } else {
+            self.normals_and_colors
+                .normals
+                .corners(object, triangles, out);
+        }
+        let before = out.split_off(start);
         let mesh = &self.world.objects[object].mesh;
-        for (&t, pair) in triangles.iter().zip(two.chunks_exact(2)) {
-            out.extend_from_slice(pair);
+        for (&t, values) in triangles.iter().zip(before.chunks_exact(firsts)) {
+            out.extend_from_slice(values);
             out.push(match self.textures.corners(object, mesh, t) {
                 Some((uv, density)) => uv.map(|uv| uv.extend(density)),
                 None => [Vec3::ZERO; 3],

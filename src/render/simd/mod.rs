@@ -11,7 +11,7 @@ mod pow;
 mod twice;
 
 pub(crate) use lane_vec::V3;
-pub(crate) use lanes::{F32x8, Lanes, Lanes8, LanesJob, WIDTH, load};
+pub(crate) use lanes::{F32x8, Lanes, Lanes8, LanesJob, ROUND_MAGIC, WIDTH, load};
 
 #[cfg(target_arch = "x86_64")]
 pub(crate) use avx::run_on_best_lanes;
