@@ -17,6 +17,7 @@ mod normals;
 mod obj;
 mod obj_error;
 mod obj_model;
+mod obj_number;
 mod obj_piece;
 mod patch;
 pub mod ply;
@@ -26,6 +27,7 @@ pub mod stl;
 mod tessellate;
 pub mod texture;
 mod unique_positions;
+mod used_vertices;
 mod weld;
 
 pub use corner_uvs::with_corner_uvs;

@@ -15,6 +15,7 @@ use glam::{Vec2, Vec3};
 
 use super::normals::unit_or_zero;
 use super::obj_error::ObjProblem;
+use super::obj_number::{parse_f32, parse_index};
 use super::srgb::srgb_to_linear;
 use crate::scene::limits::COORDINATE;
 
@@ -28,6 +29,8 @@ pub struct Counts {
     /// Triangles: known before a piece only when it is read again to find where the file
     /// passed the triangle limit (0 otherwise: each piece then checks only its own).
     pub triangles: usize,
+    /// `f` statements: what a piece reserves room for (a face is one triangle or more).
+    pub faces: usize,
 }
 
 impl Counts {
@@ -39,6 +42,7 @@ impl Counts {
             uvs: self.uvs + more.uvs,
             normals: self.normals + more.normals,
             triangles: self.triangles + more.triangles,
+            faces: self.faces + more.faces,
         }
     }
 }
@@ -94,11 +98,20 @@ fn is_space(b: u8) -> bool {
 
 /// The lines of `text`, each without its `\n` (a last line without one counts).
 fn lines(text: &[u8]) -> impl Iterator<Item = &[u8]> {
+    line_ranges(text).map(|line| &text[line])
+}
+
+/// Where the lines of `text` lie, each without its `\n` (a last line without one counts):
+/// found with `memchr`, many bytes a step.
+fn line_ranges(text: &[u8]) -> impl Iterator<Item = std::ops::Range<usize>> + '_ {
     let body = text.strip_suffix(b"\n").unwrap_or(text);
-    (!text.is_empty())
-        .then(|| body.split(|&b| b == b'\n'))
-        .into_iter()
-        .flatten()
+    let ends = memchr::memchr_iter(b'\n', body).chain(std::iter::once(body.len()));
+    let mut from = 0;
+    ends.filter(|_| !text.is_empty()).map(move |end| {
+        let line = from..end;
+        from = end + 1;
+        line
+    })
 }
 
 /// The lines and the `v`, `vt` and `vn` statements of `text` (whole lines): what a piece
@@ -117,6 +130,7 @@ pub fn count_statements(text: &[u8]) -> Counts {
             b"v" => counts.positions += 1,
             b"vt" => counts.uvs += 1,
             b"vn" => counts.normals += 1,
+            b"f" => counts.faces += 1,
             // A line not ASCII may begin with other white space or spell a keyword with
             // invalid bytes around it: it is decoded as the reader decodes it.
             _ if !line.is_ascii() => {
@@ -125,6 +139,7 @@ pub fn count_statements(text: &[u8]) -> Counts {
                     Some("v") => counts.positions += 1,
                     Some("vt") => counts.uvs += 1,
                     Some("vn") => counts.normals += 1,
+                    Some("f") => counts.faces += 1,
                     _ => {}
                 }
             }
@@ -134,11 +149,29 @@ pub fn count_statements(text: &[u8]) -> Counts {
     counts
 }
 
-/// Reads `text` (whole lines), the part of the file after what `before` counts. An error
-/// gives its line in the file.
-pub fn read_piece(text: &[u8], before: Counts) -> Result<Piece, (usize, ObjProblem)> {
+/// Reads `text` (whole lines), the part of the file after what `before` counts, with room
+/// made at once for what `holds` counts in it (its [`count_statements`]). An error gives its
+/// line in the file.
+pub fn read_piece(
+    text: &[u8],
+    before: Counts,
+    holds: Counts,
+) -> Result<Piece, (usize, ObjProblem)> {
+    let corners = |indexed: usize| match indexed {
+        0 => 0,
+        _ => holds.faces,
+    };
+    let piece = Piece {
+        positions: Vec::with_capacity(holds.positions),
+        normals: Vec::with_capacity(holds.normals),
+        uvs: Vec::with_capacity(holds.uvs),
+        triangles: Vec::with_capacity(holds.faces),
+        normal_corners: Vec::with_capacity(corners(before.normals + holds.normals)),
+        uv_corners: Vec::with_capacity(corners(before.uvs + holds.uvs)),
+        ..Piece::default()
+    };
     let mut reader = PieceReader {
-        piece: Piece::default(),
+        piece,
         before,
         corners: Vec::new(),
         limit: crate::memory_budget::triangle_cap(),
@@ -146,10 +179,10 @@ pub fn read_piece(text: &[u8], before: Counts) -> Result<Piece, (usize, ObjProbl
     // ASCII (as nearly every file is): every byte a character, so lines and words split at
     // bytes are whole characters, and the text is checked once, not line by line.
     if text.is_ascii() {
-        let text = std::str::from_utf8(text).unwrap_or_default();
-        let body = text.strip_suffix('\n').unwrap_or(text);
-        for (n, line) in body.split('\n').enumerate().filter(|_| !text.is_empty()) {
+        let ascii = std::str::from_utf8(text).unwrap_or_default();
+        for (n, line) in line_ranges(text).enumerate() {
             let number = before.lines + n + 1;
+            let line = ascii.get(line).unwrap_or_default();
             reader
                 .statement(number, line, AsciiWords(line))
                 .map_err(|problem| (number, problem))?;
@@ -239,11 +272,11 @@ impl PieceReader {
                 piece.normals.push(unit_or_zero(Vec3::from_array(n)));
             }
             Some("vt") => {
-                let u = words.next().and_then(|w| w.parse::<f32>().ok());
+                let u = words.next().and_then(parse_f32);
                 // `vt u [v [w]]`: v defaults to 0.
                 let v = match words.next() {
                     None => Some(0.0),
-                    Some(w) => w.parse::<f32>().ok(),
+                    Some(w) => parse_f32(w),
                 };
                 match (u, v) {
                     (Some(u), Some(v)) if u.is_finite() && v.is_finite() => {
@@ -356,13 +389,6 @@ fn split_slash(word: &str) -> (&str, Option<&str>) {
     }
 }
 
-/// An index as written: an optional sign and decimal digits, within `i64` (what
-/// `str::parse::<i64>` accepts).
-#[inline]
-fn parse_index(word: &str) -> Option<i64> {
-    word.parse().ok()
-}
-
 /// Index `i` as written (from 1, or negative back from the `count` read so far) as an index
 /// from 0; [`NONE`] when it names nothing before the end of what was read. A positive index may
 /// name a vertex the file gives later; it is checked at the end.
@@ -389,7 +415,7 @@ fn vertex_color<'a>(words: &mut impl Iterator<Item = &'a str>) -> Option<Vec3> {
 fn three_numbers<'a>(words: &mut impl Iterator<Item = &'a str>) -> Option<[f32; 3]> {
     let mut xyz = [0.0; 3];
     for x in &mut xyz {
-        *x = words.next()?.parse().ok()?;
+        *x = parse_f32(words.next()?)?;
     }
     Some(xyz)
 }
