@@ -193,10 +193,6 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
             )),
         measurements(&total)
     );
-    // The process ends once this returns: the world and the models are left for it to free,
-    // not unmapped page by page first (see README, "Loading").
-    std::mem::forget(report);
-    std::mem::forget(cache);
     Ok(())
 }
 
