@@ -241,6 +241,10 @@ impl PieceReader {
         line: &'a str,
         mut words: impl Iterator<Item = &'a str>,
     ) -> Result<(), ObjProblem> {
+        // A face read byte by byte when plain, else by words (naming what is wrong).
+        if line.starts_with('f') && self.plain_face(line) {
+            return Ok(());
+        }
         let piece = &mut self.piece;
         match words.next() {
             Some("v") => {
@@ -343,6 +347,31 @@ impl PieceReader {
             piece.missing_vertex |= vertex == NONE;
             self.corners.push(Corner { vertex, uv, normal });
         }
+        self.fan()
+    }
+
+    /// Reads the `f` statement `line` byte by byte when every corner is plain (`v`, `v/vt`,
+    /// `v//vn`, `v/vt/vn` with indices of at most 18 digits, each naming something read so
+    /// far or, for a vertex, anything) and fans it: true when done. False leaves the piece
+    /// as it was, for [`PieceReader::face`] to read the line (and name what is wrong).
+    fn plain_face(&mut self, line: &str) -> bool {
+        let piece = &self.piece;
+        let counts = [
+            self.before.positions + piece.positions.len(),
+            self.before.uvs + piece.uvs.len(),
+            self.before.normals + piece.normals.len(),
+        ];
+        self.corners.clear();
+        let Some(corners) = plain_corners(line.as_bytes(), counts, &mut self.corners) else {
+            return false;
+        };
+        self.piece.missing_vertex |= corners;
+        self.fan().is_ok()
+    }
+
+    /// Fans the corners read of a face into triangles.
+    fn fan(&mut self) -> Result<(), ObjProblem> {
+        let piece = &mut self.piece;
         // A point or a line: not drawn.
         if self.corners.len() < 3 {
             return Ok(());
@@ -378,6 +407,73 @@ impl PieceReader {
         }
         Ok(())
     }
+}
+
+/// The corners of the `f` statement `line` into `corners`, read byte by byte, with `counts`
+/// the positions, texture coordinates and normals read so far: whether a vertex names
+/// nothing read so far. `None`, with `corners` part filled, for anything but plain corners
+/// naming what exists (see [`PieceReader::plain_face`]).
+fn plain_corners(line: &[u8], counts: [usize; 3], corners: &mut Vec<Corner>) -> Option<bool> {
+    let mut at = line.iter().position(|&b| !is_space(b))?;
+    if line.get(at..at + 2)? != b"f " {
+        return None;
+    }
+    at += 2;
+    let mut missing = false;
+    loop {
+        while line.get(at).is_some_and(|&b| is_space(b)) {
+            at += 1;
+        }
+        if at == line.len() {
+            return Some(missing);
+        }
+        let vertex = resolve(plain_index(line, &mut at)?, counts[0]);
+        missing |= vertex == NONE;
+        let mut uv = None;
+        let mut normal = None;
+        if line.get(at) == Some(&b'/') {
+            at += 1;
+            if line.get(at) != Some(&b'/') {
+                uv = Some(existing(plain_index(line, &mut at)?, counts[1])?);
+            }
+            if line.get(at) == Some(&b'/') {
+                at += 1;
+                normal = Some(existing(plain_index(line, &mut at)?, counts[2])?);
+            }
+        }
+        if line.get(at).is_some_and(|&b| !is_space(b)) {
+            return None;
+        }
+        corners.push(Corner { vertex, uv, normal });
+    }
+}
+
+/// Index `i` as written, resolved against `count`, when it names one of them.
+#[inline]
+fn existing(i: i64, count: usize) -> Option<u32> {
+    Some(resolve(i, count)).filter(|&r| (r as usize) < count)
+}
+
+/// The index at `line[*at..]` (an optional sign and 1 to 18 digits), `*at` moved past it.
+#[inline]
+fn plain_index(line: &[u8], at: &mut usize) -> Option<i64> {
+    let negative = line.get(*at) == Some(&b'-');
+    if matches!(line.get(*at), Some(b'-' | b'+')) {
+        *at += 1;
+    }
+    let start = *at;
+    let mut value = 0i64;
+    while let Some(&b) = line.get(*at).filter(|b| b.is_ascii_digit()) {
+        if *at - start == 18 {
+            return None;
+        }
+        value = value * 10 + (b - b'0') as i64;
+        *at += 1;
+    }
+    if *at == start {
+        return None;
+    }
+    Some(if negative { -value } else { value })
 }
 
 /// `word` up to its first `/`, and the rest after that `/` when there is one.
@@ -418,4 +514,92 @@ fn three_numbers<'a>(words: &mut impl Iterator<Item = &'a str>) -> Option<[f32; 
         *x = parse_f32(words.next()?)?;
     }
     Some(xyz)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The corners `face` reads from `line` (an `f` statement), or `None` when it refuses it.
+    fn read_by_words(line: &str, before: Counts) -> Option<String> {
+        let mut reader = PieceReader {
+            piece: Piece::default(),
+            before,
+            corners: Vec::new(),
+            limit: u64::MAX,
+        };
+        let mut words = AsciiWords(line);
+        assert_eq!(words.next(), Some("f"));
+        reader.face(words).ok()?;
+        let missing = reader.piece.missing_vertex;
+        Some(format!("{:?} {missing}", reader.corners))
+    }
+
+    #[test]
+    fn plain_faces_read_byte_by_byte_as_words_read_them() {
+        let before = Counts {
+            positions: 4,
+            uvs: 2,
+            normals: 2,
+            ..Counts::default()
+        };
+        let counts = [4, 2, 2];
+        // Corners of every form, in range and not, signed, empty and malformed.
+        let forms = [
+            "1",
+            "-1",
+            "+2",
+            "4",
+            "5",
+            "-5",
+            "0",
+            "1/1",
+            "2/-2",
+            "3/3",
+            "1//2",
+            "2//3",
+            "1/2/1",
+            "3/1/-1",
+            "1/",
+            "1//",
+            "1/2/",
+            "1/2/1/1",
+            "x",
+            "1x",
+            "1/x",
+            "-",
+            "+",
+            "/1",
+            "12345678901234567890",
+            "000000000000000000001",
+        ];
+        let mut seed = 12345u64;
+        let mut next = |n: usize| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) as usize % n
+        };
+        let mut plain = 0;
+        for _ in 0..20_000 {
+            let spaces = [" ", "  ", "\t", " \r"];
+            let mut line = String::from(["f ", " f ", "f\t"][next(3)]);
+            for _ in 0..next(6) {
+                // Mostly forms that read, so that whole faces do.
+                line += forms[if next(3) > 0 {
+                    next(14)
+                } else {
+                    next(forms.len())
+                }];
+                line += spaces[next(spaces.len())];
+            }
+            let mut corners = Vec::new();
+            if let Some(missing) = plain_corners(line.as_bytes(), counts, &mut corners) {
+                plain += 1;
+                let bytes = Some(format!("{corners:?} {missing}"));
+                assert_eq!(bytes, read_by_words(&line, before), "{line:?}");
+            }
+        }
+        assert!(plain > 5_000, "{plain} plain faces of 20000");
+    }
 }
