@@ -15,7 +15,7 @@ use crate::memory_budget::{Estimate, distinct_texture_bytes};
 use crate::mesh::texture::Appearance;
 use crate::mesh::{
     Mesh, MeshFile, MeshFileError, ModelPart, Sphere, UniquePositions, instance_transform,
-    tessellate, tessellate_part, tessellate_shared, with_corner_uvs,
+    placed_shape, tessellate, tessellate_part, tessellate_shared, with_corner_uvs,
 };
 use crate::scene::{
     Falloff, Light, Material, MaterialSource, Object, Scene, SceneError, SceneWarning, Shape,
@@ -283,6 +283,18 @@ impl MeshFileCache {
     }
 }
 
+/// How much of each object a world is built with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Detail {
+    /// Everything the renderers read: normals, texture coordinates, textures.
+    Render,
+    /// Where the triangles are and nothing more, for `rastray info`: a model part's mesh is its
+    /// placed positions, triangles and vertex colours ([`placed_shape`]), without normals and
+    /// drawn plain. Counts, bounds, materials and the scene's warnings are as [`Detail::Render`]
+    /// gives them. Parts shared by several instances are built as for rendering.
+    Shape,
+}
+
 /// Where a world object came from.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct WorldObjectSource {
@@ -472,6 +484,16 @@ impl World {
         base_dir: &Path,
         cache: &mut MeshFileCache,
     ) -> Result<WorldReport, SceneError> {
+        World::build_report_with(scene, base_dir, cache, Detail::Render)
+    }
+
+    /// As [`World::build_report`], with the objects built in `detail`.
+    pub fn build_report_with(
+        scene: &Scene,
+        base_dir: &Path,
+        cache: &mut MeshFileCache,
+        detail: Detail,
+    ) -> Result<WorldReport, SceneError> {
         let mut models = Vec::with_capacity(scene.objects.len());
         let mut warnings = Vec::new();
         let mut inputs = Vec::new();
@@ -535,27 +557,29 @@ impl World {
                             if !part.instances.is_empty() {
                                 return instances_of(object, index, part, centre);
                             }
+                            let source = WorldObjectSource {
+                                object: index,
+                                part: part.label.map(str::to_string),
+                            };
+                            let material = part_material(object, part.material);
+                            if detail == Detail::Shape {
+                                let mesh = placed_shape(object, part.geometry, centre);
+                                return vec![(WorldObject::new(mesh, material), source)];
+                            }
                             let mesh = tessellate_part(object, part.geometry, centre);
                             let (mesh, appearance) = part_appearance(object, part, mesh);
                             // The file's positions are welded: a mesh with one vertex per
                             // position (smooth, no creases or seams split) has them distinct.
                             let welded = mesh.positions.len() == part.geometry.positions.len();
-                            let built = WorldObject::with_appearance(
-                                mesh,
-                                part_material(object, part.material),
-                                appearance,
-                            )
-                            .with_uvs_of(part.geometry);
+                            let built = WorldObject::with_appearance(mesh, material, appearance)
+                                .with_uvs_of(part.geometry);
                             vec![(
                                 if welded {
                                     built.with_distinct_positions()
                                 } else {
                                     built
                                 },
-                                WorldObjectSource {
-                                    object: index,
-                                    part: part.label.map(str::to_string),
-                                },
+                                source,
                             )]
                         })
                         .collect()

@@ -1,18 +1,24 @@
 //! `rastray info`: what a scene holds.
 
 use super::stdout::outln;
+use std::borrow::Cow;
 use std::path::Path;
 
 use glam::Vec3;
-use rastray::mesh::{Measurements, MeshFile, instance_transform, measure, placed_positions};
+use rastray::mesh::{Measurements, MeshFile, instance_transform, measure};
 use rastray::scene::Shape;
 use rastray::text_escape::Escaped;
-use rastray::world::{MeshFileCache, WorldObject};
+use rastray::world::{Detail, MeshFileCache, WorldObject};
+
+/// One part's vertices placed in the world (borrowed from its world mesh, or placed anew for
+/// an instance) and its triangles on them.
+type PlacedPart<'a> = (Cow<'a, [Vec3]>, &'a [[u32; 3]]);
 
 pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()> {
     let mut cache = MeshFileCache::default();
     let (scene, base) = super::load_scene(Some(path), up, &mut cache)?;
-    let report = super::build_world(&scene, &base, Some(path), &mut cache)?;
+    // Only what is printed is built: no normals, no texture coordinates.
+    let report = super::build_world_with(&scene, &base, Some(path), &mut cache, Detail::Shape)?;
     let world = &report.world;
     super::print_warnings(&scene, world);
     outln!("{}", Escaped(&path.display().to_string()));
@@ -57,20 +63,26 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
             _ => None,
         };
         let file_parts = model.as_ref().map(|m| m.parts()).unwrap_or_default();
-        // A model is measured from its file's welded vertices placed as the world places them
-        // (the same values): a flat-shaded world mesh has three vertices a triangle to weld.
-        // A part shared by several instances is measured once per instance, placed.
-        let placed: Vec<(Vec<Vec3>, &[[u32; 3]])> = match &model {
+        // A model part is measured from its world mesh, the file's welded vertices placed (a
+        // shape world's mesh: see `Detail::Shape`). A part shared by several instances is
+        // measured once per instance, its file's vertices placed as the instance places them.
+        let placed: Vec<PlacedPart> = match &model {
             Some(model) => {
                 let (lo, hi) = model.bounds();
                 let centre = (lo + hi) * 0.5;
+                let mut built = parts.iter().map(|(b, _)| &b.mesh);
                 file_parts
                     .iter()
                     .flat_map(|p| {
-                        let triangles = &p.geometry.triangles[..];
                         if p.instances.is_empty() {
-                            return vec![(placed_positions(object, p.geometry, centre), triangles)];
+                            let mesh = built.next();
+                            return mesh
+                                .map(|m| (Cow::from(&m.positions[..]), &m.triangles[..]))
+                                .into_iter()
+                                .collect();
                         }
+                        built.nth(p.instances.len() - 1);
+                        let triangles = &p.geometry.triangles[..];
                         p.instances
                             .iter()
                             .map(|instance| {
@@ -78,9 +90,9 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
                                     instance_transform(object, centre, instance.transform);
                                 let moved = p.geometry.positions.iter();
                                 let moved = moved.map(|&q| to_world.transform_point3(q)).collect();
-                                (moved, triangles)
+                                (Cow::Owned(moved), triangles)
                             })
-                            .collect()
+                            .collect::<Vec<_>>()
                     })
                     .collect()
             }

@@ -35,7 +35,7 @@ use rastray::render::Size;
 use rastray::scene::{SceneError, UpAxis};
 use rastray::terminal_image::ColorMode;
 use rastray::text_escape::Escaped;
-use rastray::world::{MeshFileCache, WorldReport};
+use rastray::world::{Detail, MeshFileCache, WorldReport};
 use rastray::{Scene, World};
 
 /// Build small 3D scenes in the terminal and render them with a Z-buffer (Gouraud or Phong) or a
@@ -313,14 +313,26 @@ pub fn build_world(
     input: Option<&Path>,
     cache: &mut MeshFileCache,
 ) -> anyhow::Result<WorldReport> {
-    let report = World::build_report(scene, base, cache).map_err(|error| match error {
-        // A world over the memory bound that no model file is the cause of: name the input.
-        SceneError::OverBudget(mut over) if over.file.as_os_str().is_empty() => {
-            over.file = input.map_or_else(|| "the default scene".into(), Path::to_path_buf);
-            SceneError::OverBudget(over)
-        }
-        error => error,
-    })?;
+    build_world_with(scene, base, input, cache, Detail::Render)
+}
+
+/// As [`build_world`], with the objects built in `detail`.
+pub fn build_world_with(
+    scene: &Scene,
+    base: &Path,
+    input: Option<&Path>,
+    cache: &mut MeshFileCache,
+    detail: Detail,
+) -> anyhow::Result<WorldReport> {
+    let report =
+        World::build_report_with(scene, base, cache, detail).map_err(|error| match error {
+            // A world over the memory bound that no model file is the cause of: name the input.
+            SceneError::OverBudget(mut over) if over.file.as_os_str().is_empty() => {
+                over.file = input.map_or_else(|| "the default scene".into(), Path::to_path_buf);
+                SceneError::OverBudget(over)
+            }
+            error => error,
+        })?;
     for warning in &report.warnings {
         eprintln!("warning: {}", Escaped(&warning.to_string()));
     }

@@ -24,6 +24,7 @@ use rayon::prelude::*;
 
 use super::obj_error::{ObjError, ObjProblem};
 use super::obj_piece::{Counts, NONE, Piece, count_statements, read_piece};
+use super::used_vertices::all_used;
 use crate::input_file::{MAX_MODEL_BYTES, open_bounded, read_bounded};
 
 /// What a model file is called in refusals.
@@ -197,10 +198,15 @@ impl Statements {
         let read: Vec<Result<Piece, (usize, ObjProblem)>> = pieces
             .par_iter()
             .zip(&before)
-            .map(|(text, &before)| read_piece(text, before))
+            .zip(&counts)
+            .map(|((text, &before), &holds)| read_piece(text, before, holds))
             .collect();
         let limit = crate::memory_budget::triangle_cap();
-        for ((piece, text), before) in read.into_iter().zip(&pieces).zip(before) {
+        let holds = counts.iter().fold(Counts::default(), |a, &b| a.then(b));
+        self.reserve(holds, limit);
+        for (((piece, text), before), holds) in
+            read.into_iter().zip(&pieces).zip(before).zip(counts)
+        {
             let piece = match piece {
                 Ok(piece) if (self.triangles.len() + piece.triangles.len()) as u64 <= limit => {
                     piece
@@ -213,6 +219,7 @@ impl Statements {
                         triangles: self.triangles.len(),
                         ..before
                     },
+                    holds,
                 )?,
             };
             self.add(piece);
@@ -222,6 +229,19 @@ impl Statements {
             ..so_far
         };
         Ok(())
+    }
+
+    /// Makes room for the statements `holds` counts, about to be added: for its faces' first
+    /// triangles, as far as the triangle `limit` allows.
+    fn reserve(&mut self, holds: Counts, limit: u64) {
+        self.positions.reserve(holds.positions);
+        self.normals.reserve(holds.normals);
+        self.uvs.reserve(holds.uvs);
+        let room = (limit as usize).saturating_sub(self.triangles.len());
+        self.triangles.reserve(holds.faces.min(room));
+        if !self.vertex_without_color && !self.colors.is_empty() {
+            self.colors.reserve(holds.positions);
+        }
     }
 
     /// Adds a piece read after everything so far.
@@ -294,29 +314,35 @@ impl Statements {
     /// (u, 1 − v): the image's top-left is the origin of [`ModelGeometry::corner_uvs`]).
     fn finish(self) -> Result<ModelGeometry, ObjProblem> {
         let mut triangles = self.triangles;
-        // Renumber the vertices faces use, in file order.
-        let mut new_index = vec![NONE; self.positions.len()];
-        for &i in triangles.iter().flatten() {
-            new_index[i as usize] = 0;
-        }
-        let used = new_index.iter().filter(|&&i| i == 0).count();
-        let mut positions = Vec::with_capacity(used);
         let given = !self.vertex_without_color && self.colors.len() == self.positions.len();
-        let mut colors = given.then(|| Vec::with_capacity(used));
-        for (k, (slot, &p)) in new_index.iter_mut().zip(&self.positions).enumerate() {
-            if *slot == 0 {
-                *slot = positions.len() as u32;
-                positions.push(p);
-                if let Some(colors) = &mut colors {
-                    colors.push(self.colors[k]);
+        let (positions, colors) = if all_used(&triangles, self.positions.len()) {
+            // Every vertex is used (as in nearly every file): the numbering stays as it is.
+            let mut positions = self.positions;
+            positions.shrink_to_fit();
+            (positions, given.then_some(self.colors))
+        } else {
+            // Renumber the vertices faces use, in file order.
+            let mut new_index = vec![NONE; self.positions.len()];
+            for &i in triangles.iter().flatten() {
+                new_index[i as usize] = 0;
+            }
+            let used = new_index.iter().filter(|&&i| i == 0).count();
+            let mut positions = Vec::with_capacity(used);
+            let mut colors = given.then(|| Vec::with_capacity(used));
+            for (k, (slot, &p)) in new_index.iter_mut().zip(&self.positions).enumerate() {
+                if *slot == 0 {
+                    *slot = positions.len() as u32;
+                    positions.push(p);
+                    if let Some(colors) = &mut colors {
+                        colors.push(self.colors[k]);
+                    }
                 }
             }
-        }
-        drop(self.colors);
-        drop(self.positions);
-        triangles
-            .par_iter_mut()
-            .for_each(|t| *t = t.map(|i| new_index[i as usize]));
+            triangles
+                .par_iter_mut()
+                .for_each(|t| *t = t.map(|i| new_index[i as usize]));
+            (positions, colors)
+        };
         triangles.shrink_to_fit();
         let corner_normals = if self.corner_without_normal || self.normals.is_empty() {
             None

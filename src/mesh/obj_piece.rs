@@ -15,6 +15,7 @@ use glam::{Vec2, Vec3};
 
 use super::normals::unit_or_zero;
 use super::obj_error::ObjProblem;
+use super::obj_number::{parse_f32, parse_index};
 use super::srgb::srgb_to_linear;
 use crate::scene::limits::COORDINATE;
 
@@ -28,6 +29,8 @@ pub struct Counts {
     /// Triangles: known before a piece only when it is read again to find where the file
     /// passed the triangle limit (0 otherwise: each piece then checks only its own).
     pub triangles: usize,
+    /// `f` statements: what a piece reserves room for (a face is one triangle or more).
+    pub faces: usize,
 }
 
 impl Counts {
@@ -39,6 +42,7 @@ impl Counts {
             uvs: self.uvs + more.uvs,
             normals: self.normals + more.normals,
             triangles: self.triangles + more.triangles,
+            faces: self.faces + more.faces,
         }
     }
 }
@@ -94,11 +98,20 @@ fn is_space(b: u8) -> bool {
 
 /// The lines of `text`, each without its `\n` (a last line without one counts).
 fn lines(text: &[u8]) -> impl Iterator<Item = &[u8]> {
+    line_ranges(text).map(|line| &text[line])
+}
+
+/// Where the lines of `text` lie, each without its `\n` (a last line without one counts):
+/// found with `memchr`, many bytes a step.
+fn line_ranges(text: &[u8]) -> impl Iterator<Item = std::ops::Range<usize>> + '_ {
     let body = text.strip_suffix(b"\n").unwrap_or(text);
-    (!text.is_empty())
-        .then(|| body.split(|&b| b == b'\n'))
-        .into_iter()
-        .flatten()
+    let ends = memchr::memchr_iter(b'\n', body).chain(std::iter::once(body.len()));
+    let mut from = 0;
+    ends.filter(|_| !text.is_empty()).map(move |end| {
+        let line = from..end;
+        from = end + 1;
+        line
+    })
 }
 
 /// The lines and the `v`, `vt` and `vn` statements of `text` (whole lines): what a piece
@@ -117,6 +130,7 @@ pub fn count_statements(text: &[u8]) -> Counts {
             b"v" => counts.positions += 1,
             b"vt" => counts.uvs += 1,
             b"vn" => counts.normals += 1,
+            b"f" => counts.faces += 1,
             // A line not ASCII may begin with other white space or spell a keyword with
             // invalid bytes around it: it is decoded as the reader decodes it.
             _ if !line.is_ascii() => {
@@ -125,6 +139,7 @@ pub fn count_statements(text: &[u8]) -> Counts {
                     Some("v") => counts.positions += 1,
                     Some("vt") => counts.uvs += 1,
                     Some("vn") => counts.normals += 1,
+                    Some("f") => counts.faces += 1,
                     _ => {}
                 }
             }
@@ -134,11 +149,29 @@ pub fn count_statements(text: &[u8]) -> Counts {
     counts
 }
 
-/// Reads `text` (whole lines), the part of the file after what `before` counts. An error
-/// gives its line in the file.
-pub fn read_piece(text: &[u8], before: Counts) -> Result<Piece, (usize, ObjProblem)> {
+/// Reads `text` (whole lines), the part of the file after what `before` counts, with room
+/// made at once for what `holds` counts in it (its [`count_statements`]). An error gives its
+/// line in the file.
+pub fn read_piece(
+    text: &[u8],
+    before: Counts,
+    holds: Counts,
+) -> Result<Piece, (usize, ObjProblem)> {
+    let corners = |indexed: usize| match indexed {
+        0 => 0,
+        _ => holds.faces,
+    };
+    let piece = Piece {
+        positions: Vec::with_capacity(holds.positions),
+        normals: Vec::with_capacity(holds.normals),
+        uvs: Vec::with_capacity(holds.uvs),
+        triangles: Vec::with_capacity(holds.faces),
+        normal_corners: Vec::with_capacity(corners(before.normals + holds.normals)),
+        uv_corners: Vec::with_capacity(corners(before.uvs + holds.uvs)),
+        ..Piece::default()
+    };
     let mut reader = PieceReader {
-        piece: Piece::default(),
+        piece,
         before,
         corners: Vec::new(),
         limit: crate::memory_budget::triangle_cap(),
@@ -146,10 +179,10 @@ pub fn read_piece(text: &[u8], before: Counts) -> Result<Piece, (usize, ObjProbl
     // ASCII (as nearly every file is): every byte a character, so lines and words split at
     // bytes are whole characters, and the text is checked once, not line by line.
     if text.is_ascii() {
-        let text = std::str::from_utf8(text).unwrap_or_default();
-        let body = text.strip_suffix('\n').unwrap_or(text);
-        for (n, line) in body.split('\n').enumerate().filter(|_| !text.is_empty()) {
+        let ascii = std::str::from_utf8(text).unwrap_or_default();
+        for (n, line) in line_ranges(text).enumerate() {
             let number = before.lines + n + 1;
+            let line = ascii.get(line).unwrap_or_default();
             reader
                 .statement(number, line, AsciiWords(line))
                 .map_err(|problem| (number, problem))?;
@@ -208,6 +241,10 @@ impl PieceReader {
         line: &'a str,
         mut words: impl Iterator<Item = &'a str>,
     ) -> Result<(), ObjProblem> {
+        // A face read byte by byte when plain, else by words (naming what is wrong).
+        if line.starts_with('f') && self.plain_face(line) {
+            return Ok(());
+        }
         let piece = &mut self.piece;
         match words.next() {
             Some("v") => {
@@ -239,11 +276,11 @@ impl PieceReader {
                 piece.normals.push(unit_or_zero(Vec3::from_array(n)));
             }
             Some("vt") => {
-                let u = words.next().and_then(|w| w.parse::<f32>().ok());
+                let u = words.next().and_then(parse_f32);
                 // `vt u [v [w]]`: v defaults to 0.
                 let v = match words.next() {
                     None => Some(0.0),
-                    Some(w) => w.parse::<f32>().ok(),
+                    Some(w) => parse_f32(w),
                 };
                 match (u, v) {
                     (Some(u), Some(v)) if u.is_finite() && v.is_finite() => {
@@ -310,6 +347,31 @@ impl PieceReader {
             piece.missing_vertex |= vertex == NONE;
             self.corners.push(Corner { vertex, uv, normal });
         }
+        self.fan()
+    }
+
+    /// Reads the `f` statement `line` byte by byte when every corner is plain (`v`, `v/vt`,
+    /// `v//vn`, `v/vt/vn` with indices of at most 18 digits, each naming something read so
+    /// far or, for a vertex, anything) and fans it: true when done. False leaves the piece
+    /// as it was, for [`PieceReader::face`] to read the line (and name what is wrong).
+    fn plain_face(&mut self, line: &str) -> bool {
+        let piece = &self.piece;
+        let counts = [
+            self.before.positions + piece.positions.len(),
+            self.before.uvs + piece.uvs.len(),
+            self.before.normals + piece.normals.len(),
+        ];
+        self.corners.clear();
+        let Some(corners) = plain_corners(line.as_bytes(), counts, &mut self.corners) else {
+            return false;
+        };
+        self.piece.missing_vertex |= corners;
+        self.fan().is_ok()
+    }
+
+    /// Fans the corners read of a face into triangles.
+    fn fan(&mut self) -> Result<(), ObjProblem> {
+        let piece = &mut self.piece;
         // A point or a line: not drawn.
         if self.corners.len() < 3 {
             return Ok(());
@@ -347,6 +409,73 @@ impl PieceReader {
     }
 }
 
+/// The corners of the `f` statement `line` into `corners`, read byte by byte, with `counts`
+/// the positions, texture coordinates and normals read so far: whether a vertex names
+/// nothing read so far. `None`, with `corners` part filled, for anything but plain corners
+/// naming what exists (see [`PieceReader::plain_face`]).
+fn plain_corners(line: &[u8], counts: [usize; 3], corners: &mut Vec<Corner>) -> Option<bool> {
+    let mut at = line.iter().position(|&b| !is_space(b))?;
+    if line.get(at..at + 2)? != b"f " {
+        return None;
+    }
+    at += 2;
+    let mut missing = false;
+    loop {
+        while line.get(at).is_some_and(|&b| is_space(b)) {
+            at += 1;
+        }
+        if at == line.len() {
+            return Some(missing);
+        }
+        let vertex = resolve(plain_index(line, &mut at)?, counts[0]);
+        missing |= vertex == NONE;
+        let mut uv = None;
+        let mut normal = None;
+        if line.get(at) == Some(&b'/') {
+            at += 1;
+            if line.get(at) != Some(&b'/') {
+                uv = Some(existing(plain_index(line, &mut at)?, counts[1])?);
+            }
+            if line.get(at) == Some(&b'/') {
+                at += 1;
+                normal = Some(existing(plain_index(line, &mut at)?, counts[2])?);
+            }
+        }
+        if line.get(at).is_some_and(|&b| !is_space(b)) {
+            return None;
+        }
+        corners.push(Corner { vertex, uv, normal });
+    }
+}
+
+/// Index `i` as written, resolved against `count`, when it names one of them.
+#[inline]
+fn existing(i: i64, count: usize) -> Option<u32> {
+    Some(resolve(i, count)).filter(|&r| (r as usize) < count)
+}
+
+/// The index at `line[*at..]` (an optional sign and 1 to 18 digits), `*at` moved past it.
+#[inline]
+fn plain_index(line: &[u8], at: &mut usize) -> Option<i64> {
+    let negative = line.get(*at) == Some(&b'-');
+    if matches!(line.get(*at), Some(b'-' | b'+')) {
+        *at += 1;
+    }
+    let start = *at;
+    let mut value = 0i64;
+    while let Some(&b) = line.get(*at).filter(|b| b.is_ascii_digit()) {
+        if *at - start == 18 {
+            return None;
+        }
+        value = value * 10 + (b - b'0') as i64;
+        *at += 1;
+    }
+    if *at == start {
+        return None;
+    }
+    Some(if negative { -value } else { value })
+}
+
 /// `word` up to its first `/`, and the rest after that `/` when there is one.
 #[inline]
 fn split_slash(word: &str) -> (&str, Option<&str>) {
@@ -354,13 +483,6 @@ fn split_slash(word: &str) -> (&str, Option<&str>) {
         Some(at) => (&word[..at], Some(&word[at + 1..])),
         None => (word, None),
     }
-}
-
-/// An index as written: an optional sign and decimal digits, within `i64` (what
-/// `str::parse::<i64>` accepts).
-#[inline]
-fn parse_index(word: &str) -> Option<i64> {
-    word.parse().ok()
 }
 
 /// Index `i` as written (from 1, or negative back from the `count` read so far) as an index
@@ -389,7 +511,95 @@ fn vertex_color<'a>(words: &mut impl Iterator<Item = &'a str>) -> Option<Vec3> {
 fn three_numbers<'a>(words: &mut impl Iterator<Item = &'a str>) -> Option<[f32; 3]> {
     let mut xyz = [0.0; 3];
     for x in &mut xyz {
-        *x = words.next()?.parse().ok()?;
+        *x = parse_f32(words.next()?)?;
     }
     Some(xyz)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The corners `face` reads from `line` (an `f` statement), or `None` when it refuses it.
+    fn read_by_words(line: &str, before: Counts) -> Option<String> {
+        let mut reader = PieceReader {
+            piece: Piece::default(),
+            before,
+            corners: Vec::new(),
+            limit: u64::MAX,
+        };
+        let mut words = AsciiWords(line);
+        assert_eq!(words.next(), Some("f"));
+        reader.face(words).ok()?;
+        let missing = reader.piece.missing_vertex;
+        Some(format!("{:?} {missing}", reader.corners))
+    }
+
+    #[test]
+    fn plain_faces_read_byte_by_byte_as_words_read_them() {
+        let before = Counts {
+            positions: 4,
+            uvs: 2,
+            normals: 2,
+            ..Counts::default()
+        };
+        let counts = [4, 2, 2];
+        // Corners of every form, in range and not, signed, empty and malformed.
+        let forms = [
+            "1",
+            "-1",
+            "+2",
+            "4",
+            "5",
+            "-5",
+            "0",
+            "1/1",
+            "2/-2",
+            "3/3",
+            "1//2",
+            "2//3",
+            "1/2/1",
+            "3/1/-1",
+            "1/",
+            "1//",
+            "1/2/",
+            "1/2/1/1",
+            "x",
+            "1x",
+            "1/x",
+            "-",
+            "+",
+            "/1",
+            "12345678901234567890",
+            "000000000000000000001",
+        ];
+        let mut seed = 12345u64;
+        let mut next = |n: usize| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) as usize % n
+        };
+        let mut plain = 0;
+        for _ in 0..20_000 {
+            let spaces = [" ", "  ", "\t", " \r"];
+            let mut line = String::from(["f ", " f ", "f\t"][next(3)]);
+            for _ in 0..next(6) {
+                // Mostly forms that read, so that whole faces do.
+                line += forms[if next(3) > 0 {
+                    next(14)
+                } else {
+                    next(forms.len())
+                }];
+                line += spaces[next(spaces.len())];
+            }
+            let mut corners = Vec::new();
+            if let Some(missing) = plain_corners(line.as_bytes(), counts, &mut corners) {
+                plain += 1;
+                let bytes = Some(format!("{corners:?} {missing}"));
+                assert_eq!(bytes, read_by_words(&line, before), "{line:?}");
+            }
+        }
+        assert!(plain > 5_000, "{plain} plain faces of 20000");
+    }
 }
