@@ -38,12 +38,25 @@ const RECENT: usize = 1 << 12;
 /// The number [`weld`] gives a key that is not used.
 pub const NOT_USED: u32 = u32::MAX;
 
+/// Where a welder's input repeats its keys, which chooses whether it first looks for each key
+/// among the keys met lately.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Repeats {
+    /// Equal keys mostly come a few faces apart (a triangle soup's corners: STL): the table of
+    /// keys met lately finds most of them before they reach a bucket.
+    Near,
+    /// Keys are mostly distinct (an indexed mesh's vertices: PLY): the look-back would find
+    /// nothing, and on the load bench cost PLY about 18% of its time.
+    Rare,
+}
+
 /// Welds the keys `0..index.len()` (`key(i)` is key `i`; only those where `used(i)` count):
 /// writes to `index[i]` the number of key `i`'s distinct key, numbered in order of first sight
 /// (or [`NOT_USED`]), and returns `kept(first)` for the first key `first` of each distinct
 /// key, in that order (so `kept` is called on ascending keys `i` with `index[i]` 0, 1, 2, …).
 pub fn weld<const N: usize, T: Copy + Default + Send>(
     index: &mut [u32],
+    repeats: Repeats,
     key: impl Fn(usize) -> [u32; N] + Sync,
     used: impl Fn(usize) -> bool + Sync,
     kept: impl Fn(usize) -> T + Sync,
@@ -67,17 +80,21 @@ pub fn weld<const N: usize, T: Copy + Default + Send>(
         .zip(&parts)
         .map(|((out, same), range)| {
             let mut counts = vec![0u32; 1 << bits];
-            let mut recent = [([0u32; N], u32::MAX); RECENT];
+            let look_back = repeats == Repeats::Near;
+            let slots = if look_back { RECENT } else { 1 };
+            let mut recent = vec![([0u32; N], u32::MAX); slots];
             for ((b, same), i) in out.iter_mut().zip(same).zip(range.clone()) {
                 *b = if used(i) {
                     let k = key(i);
                     let h = hash(&k);
-                    let seen = &mut recent[(h >> 20) as usize % RECENT];
-                    if seen.1 != u32::MAX && seen.0 == k {
+                    let seen = &mut recent[(h >> 20) as usize & (slots - 1)];
+                    if look_back && seen.1 != u32::MAX && seen.0 == k {
                         *same = seen.1;
                         SAME
                     } else {
-                        *seen = (k, i as u32);
+                        if look_back {
+                            *seen = (k, i as u32);
+                        }
                         let b = if bits == 0 {
                             0
                         } else {
@@ -293,11 +310,13 @@ pub fn weld_used<T: Copy + Send + Sync, const N: usize>(
     vertices: Vec<T>,
     key: impl Fn(&T) -> [u32; N] + Sync,
     mut triangles: Vec<[u32; 3]>,
+    repeats: Repeats,
 ) -> Indexed<T> {
     let used = used_vertices(vertices.len(), &triangles);
     let mut index = vec![0u32; vertices.len()];
     let kept = weld(
         &mut index,
+        repeats,
         |i| key(&vertices[i]),
         |i| used[i / 64] >> (i % 64) & 1 == 1,
         |i| i as u32,
@@ -400,20 +419,24 @@ mod tests {
             .map(|i| [(i * 7919) % 65_537, i % 3, 0])
             .collect();
         let used = |i: usize| i % 11 != 5;
-        let mut index = vec![0; keys.len()];
-        let firsts = weld(&mut index, |i| keys[i], used, |i| i as u32);
         let (expected_index, expected_firsts) = welded_one_by_one(&keys, used);
-        assert_eq!(firsts, expected_firsts);
-        assert_eq!(index, expected_index);
+        for repeats in [Repeats::Near, Repeats::Rare] {
+            let mut index = vec![0; keys.len()];
+            let firsts = weld(&mut index, repeats, |i| keys[i], used, |i| i as u32);
+            assert_eq!(firsts, expected_firsts, "{repeats:?}");
+            assert_eq!(index, expected_index, "{repeats:?}");
+        }
     }
 
     #[test]
     fn a_few_keys_weld_in_one_bucket() {
         let keys = [[1, 2, 3], [4, 5, 6], [1, 2, 3], [7, 8, 9], [4, 5, 6]];
-        let mut index = vec![0; keys.len()];
-        let firsts = weld(&mut index, |i| keys[i], |_| true, |i| i as u32);
-        assert_eq!(index, vec![0, 1, 0, 2, 1]);
-        assert_eq!(firsts, vec![0, 1, 3]);
+        for repeats in [Repeats::Near, Repeats::Rare] {
+            let mut index = vec![0; keys.len()];
+            let firsts = weld(&mut index, repeats, |i| keys[i], |_| true, |i| i as u32);
+            assert_eq!(index, vec![0, 1, 0, 2, 1], "{repeats:?}");
+            assert_eq!(firsts, vec![0, 1, 3], "{repeats:?}");
+        }
     }
 
     #[test]
@@ -421,9 +444,11 @@ mod tests {
         // Vertex 1 is unused; 3 repeats 0's key; 4 repeats 2's.
         let keys = vec![[5, 0], [9, 9], [7, 0], [5, 0], [7, 0]];
         let triangles = vec![[3, 2, 4], [0, 4, 2]];
-        let (kept, triangles) = weld_used(keys, |k| *k, triangles);
-        assert_eq!(kept, vec![[5, 0], [7, 0]]);
-        assert_eq!(triangles, vec![[0, 1, 1], [0, 1, 1]]);
+        for repeats in [Repeats::Near, Repeats::Rare] {
+            let (kept, welded) = weld_used(keys.clone(), |k| *k, triangles.clone(), repeats);
+            assert_eq!(kept, vec![[5, 0], [7, 0]], "{repeats:?}");
+            assert_eq!(welded, vec![[0, 1, 1], [0, 1, 1]], "{repeats:?}");
+        }
     }
 
     #[test]
@@ -431,11 +456,13 @@ mod tests {
         // 40,000 vertices whose keys repeat every 15,000: enough for several buckets.
         let keys: Vec<[u32; 3]> = (0..40_000u32).map(|i| [i % 15_000, 1, 2]).collect();
         let triangles: Vec<[u32; 3]> = (0..39_998u32).map(|i| [i, i + 1, i + 2]).collect();
-        let (kept, welded) = weld_used(keys.clone(), |k| *k, triangles.clone());
-        assert_eq!(kept.len(), 15_000);
-        assert_eq!(kept, keys[..15_000]);
-        for (old, new) in triangles.iter().zip(&welded) {
-            assert_eq!(old.map(|i| keys[i as usize]), new.map(|i| kept[i as usize]));
+        for repeats in [Repeats::Near, Repeats::Rare] {
+            let (kept, welded) = weld_used(keys.clone(), |k| *k, triangles.clone(), repeats);
+            assert_eq!(kept.len(), 15_000);
+            assert_eq!(kept, keys[..15_000]);
+            for (old, new) in triangles.iter().zip(&welded) {
+                assert_eq!(old.map(|i| keys[i as usize]), new.map(|i| kept[i as usize]));
+            }
         }
     }
 
@@ -443,7 +470,7 @@ mod tests {
     fn distinct_used_keys_come_back_uncopied() {
         let keys = vec![[1u32, 0], [2, 0], [3, 0]];
         let triangles = vec![[0, 1, 2]];
-        let (kept, same) = weld_used(keys.clone(), |k| *k, triangles.clone());
+        let (kept, same) = weld_used(keys.clone(), |k| *k, triangles.clone(), Repeats::Rare);
         assert_eq!((kept, same), (keys, triangles));
     }
 

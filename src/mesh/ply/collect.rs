@@ -12,7 +12,7 @@ use super::columns::VertexColumns;
 use super::plan::{FaceLists, SLOTS, VertexAttributes};
 
 use crate::mesh::ModelGeometry;
-use crate::mesh::weld::{coordinate_bits, weld_used};
+use crate::mesh::weld::{Repeats, coordinate_bits, weld_used};
 
 /// What has been read so far.
 ///
@@ -188,7 +188,7 @@ impl Collector {
                         [x, y, z, r, g, b]
                     })
                     .collect();
-                let (keys, triangles) = weld_used(keys, |k| *k, self.triangles);
+                let (keys, triangles) = weld_used(keys, |k| *k, self.triangles, Repeats::Rare);
                 let positions = keys.iter().map(|k| from_bits(&k[..3])).collect();
                 let colors = keys.iter().map(|k| from_bits(&k[3..])).collect();
                 (positions, Some(colors), triangles)
@@ -197,7 +197,8 @@ impl Collector {
                 // −0 becomes 0, as `coordinate_bits` sees it.
                 positions.par_iter_mut().for_each(|p| *p += Vec3::ZERO);
                 let key = |p: &Vec3| p.to_array().map(f32::to_bits);
-                let (positions, triangles) = weld_used(positions, key, self.triangles);
+                let (positions, triangles) =
+                    weld_used(positions, key, self.triangles, Repeats::Rare);
                 (positions, None, triangles)
             }
         };

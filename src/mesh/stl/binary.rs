@@ -15,7 +15,7 @@ use rayon::prelude::*;
 use super::error::{StlProblem, coordinate_problem};
 use crate::mesh::Place;
 use crate::mesh::byte_source::ByteSource;
-use crate::mesh::weld::{Indexed, coordinate_bits, weld};
+use crate::mesh::weld::{Indexed, Repeats, coordinate_bits, weld};
 
 /// Bytes a binary STL gives each triangle.
 pub const RECORD: usize = 50;
@@ -55,6 +55,7 @@ pub fn read_triangles(
     let mut triangles = vec![[0u32; 3]; whole];
     let positions = weld(
         triangles.as_flattened_mut(),
+        Repeats::Near,
         corner,
         |_| true,
         |i| {
