@@ -127,48 +127,41 @@ impl Shader<1> for PhongShader<'_> {
     }
 }
 
-/// With the vertex colour as the second varying: the albedo is the material colour times it,
-/// on meshes with colours; the others keep their material colour as it is.
-impl Shader<2> for PhongShader<'_> {
-    #[inline(always)]
-    fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 2>, row: &mut [Vec3]) {
-        self.shade_albedo::<VertexColors, L, 2>(fragments, row);
-    }
+/// `Shader<K>` for `$shader`, whose Phong shader is `$phong` (an expression of `$s`, the
+/// shader), finding each fragment's albedo the way `$albedo` says; one batch or two at once.
+macro_rules! albedo_shader {
+    ($shader:ty, $k:literal, $albedo:ty, |$s:ident| $phong:expr) => {
+        impl Shader<$k> for $shader {
+            #[inline(always)]
+            fn shade<L: Lanes8>(&self, fragments: &Fragments<L, $k>, row: &mut [Vec3]) {
+                let $s = self;
+                $phong.shade_albedo::<$albedo, L, $k>(fragments, row);
+            }
 
-    const SHADES_TWO: bool = true;
+            const SHADES_TWO: bool = true;
 
-    #[inline(always)]
-    fn shade_two<L: Lanes8>(
-        &self,
-        low: &Fragments<L, 2>,
-        high: &Fragments<L, 2>,
-        row: &mut [Vec3],
-    ) {
-        self.shade_two_albedo::<VertexColors, L, 2>(low, high, row);
-    }
+            #[inline(always)]
+            fn shade_two<L: Lanes8>(
+                &self,
+                low: &Fragments<L, $k>,
+                high: &Fragments<L, $k>,
+                row: &mut [Vec3],
+            ) {
+                let $s = self;
+                $phong.shade_two_albedo::<$albedo, L, $k>(low, high, row);
+            }
+        }
+    };
 }
 
-/// With the texture coordinates as the third varying: the albedo is also times the texture's
-/// colour, on textured meshes, at the level of the pixel's footprint (see
-/// [`crate::render::texturing`]); other meshes are multiplied by exactly 1.
-impl Shader<3> for PhongShader<'_> {
-    #[inline(always)]
-    fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 3>, row: &mut [Vec3]) {
-        self.shade_albedo::<ColorsAndTexture, L, 3>(fragments, row);
-    }
+// With the vertex colour as the second varying: the albedo is the material colour times it,
+// on meshes with colours; the others keep their material colour as it is.
+albedo_shader!(PhongShader<'_>, 2, VertexColors, |s| s);
 
-    const SHADES_TWO: bool = true;
-
-    #[inline(always)]
-    fn shade_two<L: Lanes8>(
-        &self,
-        low: &Fragments<L, 3>,
-        high: &Fragments<L, 3>,
-        row: &mut [Vec3],
-    ) {
-        self.shade_two_albedo::<ColorsAndTexture, L, 3>(low, high, row);
-    }
-}
+// With the texture coordinates as the third varying: the albedo is also times the texture's
+// colour, on textured meshes, at the level of the pixel's footprint (see
+// [`crate::render::texturing`]); other meshes are multiplied by exactly 1.
+albedo_shader!(PhongShader<'_>, 3, ColorsAndTexture, |s| s);
 
 /// Phong's shader where some mesh is textured and none has vertex colours: the second varying
 /// is the texture coordinates and density, and the albedo is the material colour times the
@@ -176,24 +169,7 @@ impl Shader<3> for PhongShader<'_> {
 /// in on meshes without colours).
 struct UncoloredTextures<'s, 'a>(&'s PhongShader<'a>);
 
-impl Shader<2> for UncoloredTextures<'_, '_> {
-    #[inline(always)]
-    fn shade<L: Lanes8>(&self, fragments: &Fragments<L, 2>, row: &mut [Vec3]) {
-        self.0.shade_albedo::<TextureOnly, L, 2>(fragments, row);
-    }
-
-    const SHADES_TWO: bool = true;
-
-    #[inline(always)]
-    fn shade_two<L: Lanes8>(
-        &self,
-        low: &Fragments<L, 2>,
-        high: &Fragments<L, 2>,
-        row: &mut [Vec3],
-    ) {
-        self.0.shade_two_albedo::<TextureOnly, L, 2>(low, high, row);
-    }
-}
+albedo_shader!(UncoloredTextures<'_, '_>, 2, TextureOnly, |s| s.0);
 
 /// How Phong finds the albedo of fragments with `K` varyings from their material colours.
 /// Types, not closures: a closure is not inlined into the caller's AVX context.
