@@ -6,13 +6,14 @@ use rayon::prelude::*;
 /// Triangles a core marks in one go.
 const CHUNK: usize = 1 << 16;
 
-/// Whether each of the `vertices` vertices is a corner of some triangle of `triangles`
-/// (indices at or past `vertices` count for none). Each core marks its triangles' corners in a
-/// bit set of its own (82 KB for 655,362 vertices: it stays in the cache, where one shared array
-/// of flags took a pass of random writes on one core), and the sets are joined.
-pub fn all_used(triangles: &[[u32; 3]], vertices: usize) -> bool {
+/// One bit a vertex (bit `i % 64` of word `i / 64`), set when vertex `i` of the `vertices` is
+/// a corner of some triangle of `triangles` (indices at or past `vertices` mark nothing). Each
+/// core marks its triangles' corners in a bit set of its own (82 KB for 655,362 vertices: it
+/// stays in the cache, where one shared array of flags took a pass of random writes on one
+/// core), and the sets are joined.
+pub fn used_bits(triangles: &[[u32; 3]], vertices: usize) -> Vec<u64> {
     let words = vertices.div_ceil(64);
-    let marks = triangles
+    triangles
         .par_chunks(CHUNK)
         .fold(
             || vec![0u64; words],
@@ -31,7 +32,13 @@ pub fn all_used(triangles: &[[u32; 3]], vertices: usize) -> bool {
                 a.iter_mut().zip(&b).for_each(|(x, y)| *x |= y);
                 a
             },
-        );
+        )
+}
+
+/// Whether each of the `vertices` vertices is a corner of some triangle of `triangles`.
+pub fn all_used(triangles: &[[u32; 3]], vertices: usize) -> bool {
+    let words = vertices.div_ceil(64);
+    let marks = used_bits(triangles, vertices);
     // Bits past the last vertex are never set (their indices are out of range).
     let last = match vertices % 64 {
         0 => u64::MAX,

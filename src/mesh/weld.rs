@@ -15,6 +15,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use rayon::prelude::*;
 
+use super::used_vertices::used_bits;
+
 /// Keys a bucket holds on average: its keys and table stay within a core's 2 MiB cache.
 const BUCKET_KEYS: usize = 1 << 13;
 
@@ -312,7 +314,7 @@ pub fn weld_used<T: Copy + Send + Sync, const N: usize>(
     mut triangles: Vec<[u32; 3]>,
     repeats: Repeats,
 ) -> Indexed<T> {
-    let used = used_vertices(vertices.len(), &triangles);
+    let used = used_bits(&triangles, vertices.len());
     let mut index = vec![0u32; vertices.len()];
     let kept = weld(
         &mut index,
@@ -335,31 +337,6 @@ pub fn weld_used<T: Copy + Send + Sync, const N: usize>(
         }
     });
     (kept, triangles)
-}
-
-/// One bit a vertex, set when a triangle uses it.
-fn used_vertices(vertices: usize, triangles: &[[u32; 3]]) -> Vec<u64> {
-    let words = vertices.div_ceil(64);
-    let share = triangles
-        .len()
-        .div_ceil(rayon::current_num_threads())
-        .max(1);
-    triangles
-        .par_chunks(share)
-        .map(|part| {
-            let mut bits = vec![0u64; words];
-            for &i in part.iter().flatten() {
-                bits[i as usize / 64] |= 1 << (i % 64);
-            }
-            bits
-        })
-        .reduce(
-            || vec![0u64; words],
-            |mut a, b| {
-                a.iter_mut().zip(&b).for_each(|(a, b)| *a |= b);
-                a
-            },
-        )
 }
 
 /// The positions whose coordinates have the bits `keys`.
