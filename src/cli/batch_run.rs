@@ -282,10 +282,7 @@ fn load_file(
 ) -> anyhow::Result<Loaded> {
     let is_model = path.is_some_and(rastray::model_scene::is_model_file);
     let up = settings.up.or(settings.default_up.filter(|_| is_model));
-    let mut cache = MeshFileCache::default();
-    let (scene, base) = super::load_scene(path, up, &mut cache)?;
-    let report = super::build_world(&scene, &base, path, &mut cache)?;
-    drop(cache);
+    let (scene, report) = super::load_world(path, up, MeshFileCache::default())?;
     let files: Vec<PathBuf> = listed.iter().cloned().chain(report.inputs).collect();
     let world = Arc::new(report.world);
     super::print_warnings(&scene, &world);

@@ -303,6 +303,19 @@ pub fn print_warnings(scene: &Scene, world: &rastray::World) {
     }
 }
 
+/// Loads the scene or model at `path` (the default scene for `None`) and builds its world for
+/// rendering: [`load_scene`] then [`build_world`], each model file read once through `cache`
+/// (a fresh one, or one holding a file read before).
+pub fn load_world(
+    path: Option<&Path>,
+    up: Option<UpAxis>,
+    mut cache: MeshFileCache,
+) -> anyhow::Result<(Scene, WorldReport)> {
+    let (scene, base) = load_scene(path, up, &mut cache)?;
+    let report = build_world(&scene, &base, path, &mut cache)?;
+    Ok((scene, report))
+}
+
 /// Builds the world of `scene` (model paths relative to `base`), read from `input` (`None`
 /// for the default scene), taking the model files already read from `cache` and keeping those
 /// it reads there; prints on stderr what its model files held that rastray skipped, one

@@ -129,10 +129,8 @@ pub fn run(args: &ViewArgs, defaults: &Defaults) -> anyhow::Result<ExitCode> {
         };
         return motion::play(&args.motion, &picture, || {
             // The first load finds the model read above; later ones read it again.
-            let mut cache = std::mem::take(&mut cache);
-            let (scene, base) = super::load_scene(args.scene.as_deref(), up, &mut cache)?;
-            let report = super::build_world(&scene, &base, args.scene.as_deref(), &mut cache)?;
-            drop(cache);
+            let cache = std::mem::take(&mut cache);
+            let (scene, report) = super::load_world(args.scene.as_deref(), up, cache)?;
             let world = Arc::new(report.world);
             let camera = args.camera.camera_for(
                 args.camera.view.first().copied(),

@@ -175,10 +175,7 @@ fn thumbnail(
     let up = request
         .up
         .filter(|_| rastray::model_scene::is_model_file(input));
-    let mut cache = MeshFileCache::default();
-    let (scene, base) = super::load_scene(Some(input), up, &mut cache)?;
-    let report = super::build_world(&scene, &base, Some(input), &mut cache)?;
-    drop(cache);
+    let (scene, report) = super::load_world(Some(input), up, MeshFileCache::default())?;
     let world = std::sync::Arc::new(report.world);
     let options = renderer.options();
     let aspect = options.width as f32 / options.height as f32;

@@ -33,9 +33,7 @@ impl ByteSource<Take<File>> {
         let size = file.get_ref().metadata()?.len();
         Ok((ByteSource::new(file), size))
     }
-}
 
-impl ByteSource<Take<File>> {
     /// The next `n` bytes (fewer when the file or its limit ends first) in a vector of their
     /// own, consumed: those buffered are copied, the rest read straight into the vector (fresh
     /// zeroed pages, never filled by hand) in pieces read in parallel, so that two cores share

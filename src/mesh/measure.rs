@@ -9,11 +9,13 @@
 //! triangles all wind the same way bounds a volume: V = Σ a·(b × c) / 6 over its triangles, in
 //! `f64` so that a million triangles lose no digits.
 
+use std::borrow::Cow;
+
 use glam::{DVec3, Vec3};
 
 use rayon::prelude::*;
 
-use super::weld::coordinate_bits;
+use super::weld::{self, Repeats, coordinate_bits};
 
 /// What [`measure`] finds. Lengths in the mesh's units, areas in their square, volumes in their
 /// cube.
@@ -98,7 +100,12 @@ const PIECE: usize = 1 << 16;
 /// Measures the triangles of `parts` (each a position list and triangles indexing it) as one
 /// mesh, welded across parts. Sums, edges and the sort run on the current rayon pool.
 pub fn measure(parts: &[(&[Vec3], &[[u32; 3]])]) -> Measurements {
-    let welded = weld(parts);
+    // The parts' positions one after another (one part's borrowed as they are).
+    let positions: Cow<[Vec3]> = match parts {
+        [(positions, _)] => Cow::Borrowed(positions),
+        _ => Cow::Owned(parts.iter().flat_map(|(p, _)| p.iter().copied()).collect()),
+    };
+    let welded = weld(&positions);
     let mut m = Measurements::default();
     let mut six_volumes = Vec::new();
     for (part_positions, triangles) in parts {
@@ -152,7 +159,7 @@ pub fn measure(parts: &[(&[Vec3], &[[u32; 3]])]) -> Measurements {
                 piece
                     .iter()
                     .map(|t| {
-                        let [a, b, c] = t.map(|i| welded.position(parts, i));
+                        let [a, b, c] = t.map(|i| welded.position(&positions, i));
                         a.dot(b.cross(c))
                     })
                     .sum()
@@ -176,112 +183,42 @@ struct Welded {
 }
 
 impl Welded {
-    /// The position of id `id` (of `parts`, the parts welded).
+    /// The position of id `id` (`positions`: the parts' positions welded).
     #[inline]
-    fn position(&self, parts: &[(&[Vec3], &[[u32; 3]])], id: u32) -> DVec3 {
-        if self.ids.is_some() {
-            return self.firsts[id as usize];
+    fn position(&self, positions: &[Vec3], id: u32) -> DVec3 {
+        match self.ids {
+            Some(_) => self.firsts[id as usize],
+            None => positions[id as usize].as_dvec3(),
         }
-        let mut k = id as usize;
-        for (positions, _) in parts {
-            match positions.get(k) {
-                Some(p) => return p.as_dvec3(),
-                None => k -= positions.len(),
-            }
-        }
-        unreachable!("an id names a position of the parts")
     }
 }
 
-/// Fewest positions a bucket of the weld holds on average: a bucket is sorted on its own, in
-/// the cache.
-const BUCKET: usize = 256;
-
-/// The positions of `parts`, one after another, welded: positions whose coordinates have the
-/// same bits (−0 as 0) share an id, the first of them in the parts giving its position. The
-/// positions are shared out into buckets by a hash of those bits (a counting sort: two passes,
-/// no comparisons), then each bucket is sorted on its own, the buckets shared out among the
-/// cores: where one sort of them all took 25 ms of `info`'s time on the 655,362 positions of a
-/// 1.31M-triangle sphere, and a hash table 60 ms on one core. The ids are numbered in the order
-/// of the buckets, not first sight: what is measured does not depend on the numbering.
-fn weld(parts: &[(&[Vec3], &[[u32; 3]])]) -> Welded {
-    let total: usize = parts.iter().map(|(p, _)| p.len()).sum();
-    let position = |i: usize| {
-        let mut k = i;
-        for (positions, _) in parts {
-            match positions.get(k) {
-                Some(p) => return *p,
-                None => k -= positions.len(),
-            }
-        }
-        unreachable!("an index names a position of the parts")
-    };
-    // 2^bits buckets of BUCKET positions or more (one for a few positions).
-    let bits = (total / BUCKET).max(1).ilog2().min(20);
-    let bucket_of = |key: [u32; 3]| {
-        let [x, y, z] = key.map(u64::from);
-        let mixed = (x ^ y.rotate_left(21) ^ z.rotate_left(42)).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-        mixed.checked_shr(64 - bits).unwrap_or(0) as usize
-    };
-    let keys: Vec<[u32; 3]> = parts
-        .iter()
-        .flat_map(|(p, _)| p.iter())
-        .map(|p| p.to_array().map(coordinate_bits))
-        .collect();
-    let buckets = 1usize << bits;
-    let mut start = vec![0u32; buckets + 1];
-    for &key in &keys {
-        start[bucket_of(key) + 1] += 1;
-    }
-    for b in 0..buckets {
-        start[b + 1] += start[b];
-    }
-    let mut fill = start.clone();
-    let mut sorted = vec![([0u32; 3], 0u32); total];
-    for (i, &key) in keys.iter().enumerate() {
-        let slot = &mut fill[bucket_of(key)];
-        sorted[*slot as usize] = (key, i as u32);
-        *slot += 1;
-    }
-    drop(fill);
-    drop(keys);
-    // By key, then by index, bucket by bucket: the first of a run of one key is its first in
-    // the parts, and equal keys share a bucket.
-    let mut rows: Vec<&mut [([u32; 3], u32)]> = Vec::with_capacity(buckets);
-    let mut rest = &mut sorted[..];
-    for b in 0..buckets {
-        let (row, after) =
-            std::mem::take(&mut rest).split_at_mut((start[b + 1] - start[b]) as usize);
-        rows.push(row);
-        rest = after;
-    }
-    rows.into_par_iter()
-        .with_min_len(64)
-        .for_each(|row| row.sort_unstable());
-    let distinct = sorted
-        .par_windows(2)
-        .filter(|pair| pair[0].0 != pair[1].0)
-        .count()
-        + usize::from(total > 0);
-    if distinct == total {
+/// `positions` welded by the loaders' welder ([`weld::weld`]): positions whose coordinates
+/// have the same bits (−0 as 0) share an id, numbered in order of first sight, the first of
+/// them giving its position.
+fn weld(positions: &[Vec3]) -> Welded {
+    let mut ids = vec![0u32; positions.len()];
+    let firsts = weld::weld(
+        &mut ids,
+        Repeats::Rare,
+        |i| positions[i].to_array().map(coordinate_bits),
+        |_| true,
+        |i| i as u32,
+    );
+    if firsts.len() == positions.len() {
         return Welded {
-            count: total,
+            count: positions.len(),
             ids: None,
             firsts: Vec::new(),
         };
     }
-    let mut ids = vec![0u32; total];
-    let mut firsts = Vec::with_capacity(distinct);
-    for (j, &(key, i)) in sorted.iter().enumerate() {
-        if j == 0 || sorted[j - 1].0 != key {
-            firsts.push(position(i as usize).as_dvec3());
-        }
-        ids[i as usize] = firsts.len() as u32 - 1;
-    }
     Welded {
         count: firsts.len(),
         ids: Some(ids),
-        firsts,
+        firsts: firsts
+            .par_iter()
+            .map(|&i| positions[i as usize].as_dvec3())
+            .collect(),
     }
 }
 
@@ -509,7 +446,7 @@ mod tests {
 
     #[test]
     fn welding_joins_exactly_the_positions_of_equal_bits_and_keeps_the_first() {
-        // Positions drawn from a few values, ±0 among them, over two parts.
+        // Positions drawn from a few values, ±0 among them: two parts' one after another.
         let values = [0.0, -0.0, 1.0, 0.5, -2.0];
         let mut state = 7u64;
         let mut next = move || {
@@ -524,9 +461,9 @@ mod tests {
         let b: Vec<Vec3> = (0..200)
             .map(|_| Vec3::new(next(), next(), next()))
             .collect();
-        let welded = weld(&[(&a[..], &[][..]), (&b[..], &[][..])]);
-        let (ids, positions) = (welded.ids.unwrap(), welded.firsts);
         let all: Vec<Vec3> = a.iter().chain(&b).copied().collect();
+        let welded = weld(&all);
+        let (ids, positions) = (welded.ids.unwrap(), welded.firsts);
         let key = |p: Vec3| p.to_array().map(coordinate_bits);
         for (i, &p) in all.iter().enumerate() {
             let first = all.iter().position(|&q| key(q) == key(p)).unwrap();

@@ -52,22 +52,33 @@ fn plain_decimal(bytes: &[u8]) -> Option<f32> {
 /// digits, within `i64`.
 #[inline]
 pub fn parse_index(word: &str) -> Option<i64> {
-    let bytes = word.as_bytes();
-    let (negative, digits) = match bytes.first()? {
-        b'-' => (true, &bytes[1..]),
-        b'+' => (false, &bytes[1..]),
-        _ => (false, bytes),
-    };
-    // Up to 18 digits cannot overflow; longer words are `str::parse`'s to judge.
-    if digits.is_empty() || digits.len() > 18 {
-        return word.parse().ok();
+    let mut at = 0;
+    match index_at(word.as_bytes(), &mut at) {
+        Some(value) if at == word.len() => Some(value),
+        // Longer than 18 digits, or not an index: `str::parse`'s to judge.
+        _ => word.parse().ok(),
     }
+}
+
+/// The index at `bytes[*at..]`, an optional sign and 1 to 18 digits (which cannot overflow),
+/// with `*at` moved past it; `None` where there are no digits or more than 18.
+#[inline]
+pub fn index_at(bytes: &[u8], at: &mut usize) -> Option<i64> {
+    let negative = bytes.get(*at) == Some(&b'-');
+    if matches!(bytes.get(*at), Some(b'-' | b'+')) {
+        *at += 1;
+    }
+    let start = *at;
     let mut value = 0i64;
-    for &b in digits {
-        if !b.is_ascii_digit() {
+    while let Some(&b) = bytes.get(*at).filter(|b| b.is_ascii_digit()) {
+        if *at - start == 18 {
             return None;
         }
         value = value * 10 + (b - b'0') as i64;
+        *at += 1;
+    }
+    if *at == start {
+        return None;
     }
     Some(if negative { -value } else { value })
 }

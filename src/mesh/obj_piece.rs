@@ -15,7 +15,7 @@ use glam::{Vec2, Vec3};
 
 use super::normals::unit_or_zero;
 use super::obj_error::ObjProblem;
-use super::obj_number::{parse_f32, parse_index};
+use super::obj_number::{index_at, parse_f32, parse_index};
 use super::srgb::srgb_to_linear;
 use crate::scene::limits::COORDINATE;
 
@@ -427,18 +427,18 @@ fn plain_corners(line: &[u8], counts: [usize; 3], corners: &mut Vec<Corner>) -> 
         if at == line.len() {
             return Some(missing);
         }
-        let vertex = resolve(plain_index(line, &mut at)?, counts[0]);
+        let vertex = resolve(index_at(line, &mut at)?, counts[0]);
         missing |= vertex == NONE;
         let mut uv = None;
         let mut normal = None;
         if line.get(at) == Some(&b'/') {
             at += 1;
             if line.get(at) != Some(&b'/') {
-                uv = Some(existing(plain_index(line, &mut at)?, counts[1])?);
+                uv = Some(existing(index_at(line, &mut at)?, counts[1])?);
             }
             if line.get(at) == Some(&b'/') {
                 at += 1;
-                normal = Some(existing(plain_index(line, &mut at)?, counts[2])?);
+                normal = Some(existing(index_at(line, &mut at)?, counts[2])?);
             }
         }
         if line.get(at).is_some_and(|&b| !is_space(b)) {
@@ -452,28 +452,6 @@ fn plain_corners(line: &[u8], counts: [usize; 3], corners: &mut Vec<Corner>) -> 
 #[inline]
 fn existing(i: i64, count: usize) -> Option<u32> {
     Some(resolve(i, count)).filter(|&r| (r as usize) < count)
-}
-
-/// The index at `line[*at..]` (an optional sign and 1 to 18 digits), `*at` moved past it.
-#[inline]
-fn plain_index(line: &[u8], at: &mut usize) -> Option<i64> {
-    let negative = line.get(*at) == Some(&b'-');
-    if matches!(line.get(*at), Some(b'-' | b'+')) {
-        *at += 1;
-    }
-    let start = *at;
-    let mut value = 0i64;
-    while let Some(&b) = line.get(*at).filter(|b| b.is_ascii_digit()) {
-        if *at - start == 18 {
-            return None;
-        }
-        value = value * 10 + (b - b'0') as i64;
-        *at += 1;
-    }
-    if *at == start {
-        return None;
-    }
-    Some(if negative { -value } else { value })
 }
 
 /// `word` up to its first `/`, and the rest after that `/` when there is one.

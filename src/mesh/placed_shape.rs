@@ -3,13 +3,12 @@
 //! normals took a fifth of its time on the 1.31M-triangle icosphere.
 
 use glam::Vec3;
-use rayon::prelude::*;
 
-use super::face_list::{Mesh, PASS_CHUNK};
+use super::face_list::Mesh;
 use super::geometry::ModelGeometry;
-use super::tessellate::object_transform;
+use super::tessellate::placed_positions;
 use super::used_vertices::all_used;
-use crate::scene::{Object, Shape};
+use crate::scene::Object;
 
 /// The world positions of the vertices `geometry`'s triangles use, placed as
 /// [`super::tessellate_part`] places them (bit for bit: the same values, each once), its
@@ -20,19 +19,10 @@ use crate::scene::{Object, Shape};
 /// # Panics
 /// If `object` is not a mesh object (a caller bug).
 pub fn placed_shape(object: &Object, geometry: &ModelGeometry, centre: Vec3) -> Mesh {
-    let Shape::Mesh { scale, .. } = &object.shape else {
-        panic!("only mesh objects have model parts");
-    };
-    let transform = object_transform(object);
-    let place = |&p: &Vec3| transform.transform_point3((p - centre) * *scale);
+    let positions = placed_positions(object, geometry, centre);
     if all_used(&geometry.triangles, geometry.positions.len()) {
         return Mesh {
-            positions: geometry
-                .positions
-                .par_iter()
-                .with_min_len(PASS_CHUNK)
-                .map(place)
-                .collect(),
+            positions,
             triangles: geometry.triangles.clone(),
             colors: geometry.colors.clone(),
             ..Mesh::default()
@@ -50,7 +40,7 @@ pub fn placed_shape(object: &Object, geometry: &ModelGeometry, centre: Vec3) -> 
     };
     for (k, _) in used.iter().enumerate().filter(|(_, u)| **u) {
         new_index[k] = mesh.positions.len() as u32;
-        mesh.positions.push(place(&geometry.positions[k]));
+        mesh.positions.push(positions[k]);
         if let (Some(out), Some(colors)) = (&mut mesh.colors, &geometry.colors) {
             out.push(colors[k]);
         }
@@ -67,7 +57,7 @@ pub fn placed_shape(object: &Object, geometry: &ModelGeometry, centre: Vec3) -> 
 mod tests {
     use super::*;
     use crate::mesh::{cuboid, tessellate_part};
-    use crate::scene::ShapeKind;
+    use crate::scene::{Shape, ShapeKind};
 
     #[test]
     fn the_shape_holds_the_points_of_the_tessellated_part_bit_for_bit() {

@@ -18,11 +18,17 @@ pub fn srgb_to_linear(encoded: f32) -> f32 {
     }
 }
 
-/// An 8-bit sRGB code value to linear [0, 1], from a table made on first use.
+/// An 8-bit sRGB code value to linear [0, 1], from [`srgb_byte_table`].
 #[inline]
 pub fn srgb_byte_to_linear(code: u8) -> f32 {
+    srgb_byte_table()[code as usize]
+}
+
+/// The linear [0, 1] value of each 8-bit sRGB code, made on first use.
+#[inline]
+pub(crate) fn srgb_byte_table() -> &'static [f32; 256] {
     static TABLE: OnceLock<[f32; 256]> = OnceLock::new();
-    TABLE.get_or_init(|| std::array::from_fn(|i| srgb_to_linear(i as f32 / 255.0)))[code as usize]
+    TABLE.get_or_init(|| std::array::from_fn(|i| srgb_to_linear(i as f32 / 255.0)))
 }
 
 #[cfg(test)]

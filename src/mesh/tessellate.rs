@@ -117,7 +117,8 @@ pub fn placed_positions(object: &Object, geometry: &ModelGeometry, centre: Vec3)
     let transform = object_transform(object);
     geometry
         .positions
-        .iter()
+        .par_iter()
+        .with_min_len(PASS_CHUNK)
         .map(|&p| transform.transform_point3((p - centre) * *scale))
         .collect()
 }

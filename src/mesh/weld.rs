@@ -349,7 +349,7 @@ pub fn positions_of(keys: &[[u32; 3]]) -> Vec<glam::Vec3> {
 /// A multiply-xorshift hash of a key's words: the high bits choose the bucket, the low bits
 /// the slot.
 #[inline]
-pub fn hash<const N: usize>(key: &[u32; N]) -> u64 {
+fn hash<const N: usize>(key: &[u32; N]) -> u64 {
     const K: u64 = 0x9e37_79b9_7f4a_7c15;
     let mut h = 0u64;
     for pair in key.chunks(2) {

@@ -95,9 +95,8 @@ impl FaceLayout {
     }
 }
 
-/// Reads vertex records `done..count` of the element that begins at the source's position
-/// (`done` of them read already, by earlier calls) while they are whole; how many are read in
-/// all. Errors as the general reader's: the vertex's number and its record's offset.
+/// Reads vertex records `0..count` of the element that begins at the source's position while
+/// they are whole; how many are read. Errors as the general reader's: the vertex's number and its record's offset.
 pub fn read_vertices<R: Read, const BIG: bool>(
     source: &mut ByteSource<R>,
     count: u64,

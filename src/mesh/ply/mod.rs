@@ -245,19 +245,28 @@ fn read_body<R: Read>(
             }
         }
         PlyEncoding::BinaryLittleEndian => {
-            for (element, (plan, role)) in header.elements.iter().zip(plans) {
-                let first = fast_prefix::<R, false>(source, element, &plan, &role, collector)?;
-                let element = (element, first);
-                binary::read_element::<R, false>(source, size, element, &plan, role, collector)?;
-            }
+            let elements = header.elements.iter().zip(plans);
+            read_binary_body::<R, false>(source, size, elements, collector)?
         }
         PlyEncoding::BinaryBigEndian => {
-            for (element, (plan, role)) in header.elements.iter().zip(plans) {
-                let first = fast_prefix::<R, true>(source, element, &plan, &role, collector)?;
-                let element = (element, first);
-                binary::read_element::<R, true>(source, size, element, &plan, role, collector)?;
-            }
+            let elements = header.elements.iter().zip(plans);
+            read_binary_body::<R, true>(source, size, elements, collector)?
         }
+    }
+    Ok(())
+}
+
+/// Reads the `elements` of a binary body (each with its plan and role) in order (`BIG`:
+/// big-endian), each through the fast paths while they fit, then the general reader.
+fn read_binary_body<'h, R: Read, const BIG: bool>(
+    source: &mut ByteSource<R>,
+    size: u64,
+    elements: impl Iterator<Item = (&'h Element, (Plan, Role))>,
+    collector: &mut Collector,
+) -> Result<(), (Place, PlyProblem)> {
+    for (element, (plan, role)) in elements {
+        let first = fast_prefix::<R, BIG>(source, element, &plan, &role, collector)?;
+        binary::read_element::<R, BIG>(source, size, (element, first), &plan, role, collector)?;
     }
     Ok(())
 }

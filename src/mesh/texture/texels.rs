@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 
 use glam::Vec4;
 
-use crate::mesh::srgb_byte_to_linear;
+use crate::mesh::srgb::srgb_byte_table;
 
 /// Linear values per step of a 16-bit channel: 65535 steps from 0 to 1.
 const STEPS16: f32 = 65_535.0;
@@ -29,19 +29,6 @@ impl Texels {
     /// 1/65535 (NaN reads as 0).
     pub fn linear(texels: impl IntoIterator<Item = [f32; 4]>) -> Texels {
         Texels::Linear16(texels.into_iter().map(|t| t.map(to_u16)).collect())
-    }
-
-    /// How many texels.
-    pub fn len(&self) -> usize {
-        match self {
-            Texels::Srgb8(t) => t.len(),
-            Texels::Linear16(t) => t.len(),
-        }
-    }
-
-    /// Whether there are none (never, in a texture's levels).
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
     }
 
     /// Bytes they hold.
@@ -79,7 +66,8 @@ pub const LINEAR16_TEXEL_BYTES: u64 = 8;
 /// The linear values of 8-bit codes: sRGB-decoded for colour, code / 255 for alpha.
 #[derive(Debug)]
 pub struct SrgbTable {
-    color: [f32; 256],
+    /// The sRGB decode's own table ([`srgb_byte_table`]).
+    color: &'static [f32; 256],
     alpha: [f32; 256],
 }
 
@@ -89,7 +77,7 @@ impl SrgbTable {
     pub fn get() -> &'static SrgbTable {
         static TABLE: OnceLock<SrgbTable> = OnceLock::new();
         TABLE.get_or_init(|| SrgbTable {
-            color: std::array::from_fn(|i| srgb_byte_to_linear(i as u8)),
+            color: srgb_byte_table(),
             alpha: std::array::from_fn(|i| i as f32 / 255.0),
         })
     }
@@ -131,6 +119,7 @@ fn to_u16(value: f32) -> u16 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::srgb_byte_to_linear;
 
     #[test]
     fn sixteen_bits_keep_values_within_half_a_step_and_the_ends_exactly() {

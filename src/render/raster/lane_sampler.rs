@@ -9,7 +9,7 @@
 //! at the edges between levels.
 
 use crate::mesh::texture::{
-    Filter, MipFilter, MipLevel, Sampler, SrgbTable, Texels, Texture, U16_STEP, Wrap, neighbours,
+    Filter, MipFilter, MipLevel, Sampler, SrgbTable, Texels, Texture, U16_STEP, neighbours,
     wrapped_fast,
 };
 use crate::render::simd::{Lanes, Lanes8, ROUND_MAGIC, V3, WIDTH};
@@ -105,8 +105,8 @@ fn read_level<L: Lanes8>(
             let (i, j) = (i.to_array(), j.to_array());
             let mut index = [0u32; WIDTH];
             for k in 0..WIDTH {
-                let column = wrapped(i[k], width, wrap_x);
-                index[k] = wrapped(j[k], height, wrap_y) * width + column;
+                let column = wrapped_fast(i[k], width, wrap_x);
+                index[k] = wrapped_fast(j[k], height, wrap_y) * width + column;
             }
             Some(texels(level, &index))
         }
@@ -119,8 +119,8 @@ fn read_level<L: Lanes8>(
             let (i, j) = (x0.to_array(), y0.to_array());
             let mut index = [[0u32; WIDTH]; 4];
             for k in 0..WIDTH {
-                let (i0, i1) = pair(i[k], width, wrap_x);
-                let (j0, j1) = pair(j[k], height, wrap_y);
+                let (i0, i1) = neighbours(i[k], width, wrap_x);
+                let (j0, j1) = neighbours(j[k], height, wrap_y);
                 let (row0, row1) = (j0 * width, j1 * width);
                 index[0][k] = row0 + i0;
                 index[1][k] = row0 + i1;
@@ -133,26 +133,6 @@ fn read_level<L: Lanes8>(
             Some(top + (bottom - top) * fy)
         }
     }
-}
-
-/// The texel index that whole texel coordinate `texel` reads in a row of `size` under `wrap`:
-/// a mask on power-of-two repeats, else the one-point sampler's `wrapped_fast`.
-#[inline(always)]
-fn wrapped(texel: f32, size: u32, wrap: Wrap) -> u32 {
-    if wrap == Wrap::Repeat && size.is_power_of_two() {
-        return (texel as i32 as u32) & (size - 1);
-    }
-    wrapped_fast(texel, size, wrap)
-}
-
-/// The indices that whole texel coordinates `texel` and `texel + 1` read, as [`wrapped`].
-#[inline(always)]
-fn pair(texel: f32, size: u32, wrap: Wrap) -> (u32, u32) {
-    if wrap == Wrap::Repeat && size.is_power_of_two() {
-        let i = texel as i32 as u32;
-        return (i & (size - 1), i.wrapping_add(1) & (size - 1));
-    }
-    neighbours(texel, size, wrap)
 }
 
 /// The RGB of the texels at `index` of `level`, linear, lane k texel `index[k]`.
@@ -189,7 +169,7 @@ fn floor_small<L: Lanes>(x: L) -> Option<L> {
     Some(floor(x))
 }
 
-/// The largest whole number not above `x`, for |`x`| < [`SMALL`]: the bits of the one-point
+/// The largest whole number not above `x`, for |`x`| < [`LARGEST_SMALL`]: the bits of the one-point
 /// sampler's `floor` (round to the nearest by adding and subtracting 1.5·2^23, then step down
 /// where that went up).
 #[inline(always)]
@@ -213,7 +193,7 @@ mod tests {
     use glam::{Vec2, Vec3, Vec4};
 
     use super::*;
-    use crate::mesh::texture::{MipLevel, mip_chain};
+    use crate::mesh::texture::{MipLevel, Wrap, mip_chain};
     use crate::render::simd::{F32x8, LanesJob, run_on_best_lanes};
 
     /// A `width × height` texture whose level 0 holds sRGB bytes from `seed`, with its chain.

@@ -156,17 +156,15 @@ impl<'a> NormalsColorsAndUvs<'a> {
 impl Varying for NormalsColorsAndUvs<'_> {
     fn corners(&self, object: usize, triangles: &[u32], out: &mut Vec<[Vec3; 3]>) {
         let start = out.len();
-        let firsts = match self.colors {
-            true => 2,
-            false => 1,
-        };
-        if self.colors {
+        let firsts = if self.colors {
             self.normals_and_colors.corners(object, triangles, out);
+            2
         } else {
             self.normals_and_colors
                 .normals
                 .corners(object, triangles, out);
-        }
+            1
+        };
         let before = out.split_off(start);
         let mesh = &self.world.objects[object].mesh;
         for (&t, values) in triangles.iter().zip(before.chunks_exact(firsts)) {
