@@ -24,10 +24,16 @@ pub fn fragment_texels<L: Lanes8, const K: usize>(
     normal: V3<L>,
     uvd: V3<L>,
 ) -> V3<L> {
-    let objects = fragments.object.map(|o| o as usize);
+    // Plain loops here and below, not `array::map`: the compiler leaves a map's closure out of
+    // line, outside the wide-register code (a fifth of the textured Gouraud frame on the Duck).
+    let mut objects = [0usize; WIDTH];
+    for (object, &o) in objects.iter_mut().zip(&fragments.object) {
+        *object = o as usize;
+    }
     if !objects.iter().any(|&o| textures.is_textured(o)) {
         return V3::splat(Vec3::ONE);
     }
+    let one_object = objects.iter().all(|&o| o == objects[0]);
     // Each fragment's ray: through its pixel from the eye, or along the view direction for
     // every pixel of an orthographic view.
     let rays = if view.orthographic {
@@ -40,10 +46,18 @@ pub fn fragment_texels<L: Lanes8, const K: usize>(
     let length = rays.length_squared().sqrt();
     let distance = fragments.depth * length;
     let cos = normal.normalize_or_zero().dot(rays) / length;
-    let texels = L::from_array(objects.map(|o| textures.texel_count(o)));
+    let texels = if one_object {
+        L::splat(textures.texel_count(objects[0]))
+    } else {
+        let mut texels = [0.0; WIDTH];
+        for (count, &o) in texels.iter_mut().zip(&objects) {
+            *count = textures.texel_count(o);
+        }
+        L::from_array(texels)
+    };
     let lod = textures.level_of_detail(texels, uvd.z, distance, cos);
     // One textured object in all lanes, as mostly: the eight are sampled together.
-    if objects.iter().all(|&o| o == objects[0])
+    if one_object
         && let Some(binding) = textures.binding(objects[0])
         && let Some(rgb) = sample_rgb(&binding.sampler, &binding.texture, uvd.x, uvd.y, lod)
     {

@@ -54,7 +54,10 @@ pub fn sample_rgb<L: Lanes8>(
     let lod = lod.min(L::splat(deepest));
     match sampler.mip {
         MipFilter::Nearest => {
-            let levels = lod.to_array().map(f32::round);
+            let mut levels = lod.to_array();
+            for level in &mut levels {
+                *level = level.round();
+            }
             let level = same(levels)?;
             read_level(
                 sampler,
@@ -127,7 +130,9 @@ fn read_level<L: Lanes8>(
                 index[2][k] = row1 + i0;
                 index[3][k] = row1 + i1;
             }
-            let [t00, t10, t01, t11] = index.map(|index| texels(level, &index));
+            // Four calls, not `index.map(..)`: the compiler leaves a map's closure out of line.
+            let (t00, t10) = (texels(level, &index[0]), texels(level, &index[1]));
+            let (t01, t11) = (texels(level, &index[2]), texels(level, &index[3]));
             let top = t00 + (t10 - t00) * fx;
             let bottom = t01 + (t11 - t01) * fx;
             Some(top + (bottom - top) * fy)
