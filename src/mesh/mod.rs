@@ -7,6 +7,7 @@ mod face_list;
 mod geometry;
 pub mod gltf;
 mod icosahedron;
+mod line_blocks;
 mod measure;
 mod mesh_file;
 mod model_error;

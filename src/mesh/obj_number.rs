@@ -24,23 +24,34 @@ pub fn parse_f32(word: &str) -> Option<f32> {
 /// word, which [`parse_f32`] hands to `str::parse`.
 #[inline]
 fn plain_decimal(bytes: &[u8]) -> Option<f32> {
-    let (negative, digits) = match bytes.first()? {
-        b'-' => (true, &bytes[1..]),
-        b'+' => (false, &bytes[1..]),
-        _ => (false, bytes),
-    };
-    let (mut mantissa, mut count, mut after_point) = (0u64, 0usize, None);
-    for (at, &b) in digits.iter().enumerate() {
+    let mut at = 0;
+    decimal_at(bytes, &mut at).filter(|_| at == bytes.len())
+}
+
+/// The plain decimal at `bytes[*at..]` (see [`plain_decimal`]), up to the first byte that is
+/// neither a digit nor its point, with `*at` moved past it: the value `parse_f32` gives the
+/// word when that byte ends it. `None` (`*at` anywhere) when it is no plain decimal.
+#[inline]
+pub fn decimal_at(bytes: &[u8], at: &mut usize) -> Option<f32> {
+    let negative = bytes.get(*at) == Some(&b'-');
+    if matches!(bytes.get(*at), Some(b'-' | b'+')) {
+        *at += 1;
+    }
+    let (mut mantissa, mut count, mut point) = (0u64, 0usize, None);
+    while let Some(&b) = bytes.get(*at) {
         match b {
             b'0'..=b'9' if count < 18 => {
                 mantissa = mantissa * 10 + (b - b'0') as u64;
                 count += 1;
             }
-            b'.' if after_point.is_none() => after_point = Some(at + 1),
-            _ => return None,
+            b'0'..=b'9' => return None,
+            b'.' if point.is_none() => point = Some(*at + 1),
+            b'.' => return None,
+            _ => break,
         }
+        *at += 1;
     }
-    let fraction = after_point.map_or(0, |from| digits.len() - from);
+    let fraction = point.map_or(0, |from| *at - from);
     if count == 0 || mantissa > EXACT_INTEGERS || fraction >= POWERS_OF_TEN.len() {
         return None;
     }

@@ -15,7 +15,7 @@ use glam::{Vec2, Vec3};
 
 use super::normals::unit_or_zero;
 use super::obj_error::ObjProblem;
-use super::obj_number::{index_at, parse_f32, parse_index};
+use super::obj_number::{decimal_at, index_at, parse_f32, parse_index};
 use super::srgb::srgb_to_linear;
 use crate::scene::limits::COORDINATE;
 
@@ -204,6 +204,7 @@ pub fn read_piece(
 }
 
 /// The words of an ASCII line, split at white space as `str::split_whitespace` splits them.
+#[derive(Clone)]
 struct AsciiWords<'a>(&'a str);
 
 impl<'a> Iterator for AsciiWords<'a> {
@@ -241,9 +242,15 @@ impl PieceReader {
         line: &'a str,
         mut words: impl Iterator<Item = &'a str>,
     ) -> Result<(), ObjProblem> {
-        // A face read byte by byte when plain, else by words (naming what is wrong).
+        // A face or a vertex read byte by byte when plain, else by words (naming what is
+        // wrong).
         if line.starts_with('f') && self.plain_face(line) {
             return Ok(());
+        }
+        if line.starts_with('v')
+            && let Some(p) = plain_vertex(line.as_bytes())
+        {
+            return self.vertex(p, None);
         }
         let piece = &mut self.piece;
         match words.next() {
@@ -251,23 +258,8 @@ impl PieceReader {
                 let p = three_numbers(&mut words).ok_or(ObjProblem::Malformed(
                     "a vertex is `v x y z`, three numbers",
                 ))?;
-                let vertex = self.before.positions + piece.positions.len() + 1;
-                if let Some(&value) = p.iter().find(|&&x| !COORDINATE.accepts(x)) {
-                    return Err(if value.is_finite() {
-                        ObjProblem::VertexOutOfRange { vertex, value }
-                    } else {
-                        ObjProblem::NonFiniteVertex { vertex }
-                    });
-                }
-                piece.positions.push(Vec3::from_array(p));
-                match (vertex_color(&mut words), piece.vertex_without_color) {
-                    (_, true) => {}
-                    (Some(color), false) => piece.colors.push(color),
-                    (None, false) => {
-                        piece.vertex_without_color = true;
-                        piece.colors = Vec::new();
-                    }
-                }
+                let color = vertex_color(&mut words);
+                self.vertex(p, color)?;
             }
             Some("vn") => {
                 let n = three_numbers(&mut words).ok_or(ObjProblem::Malformed(
@@ -308,6 +300,29 @@ impl PieceReader {
             }
             // Groups, smoothing groups, points and lines: not drawn.
             _ => {}
+        }
+        Ok(())
+    }
+
+    /// Adds the vertex at `p` with its colour, if the statement gives one.
+    fn vertex(&mut self, p: [f32; 3], color: Option<Vec3>) -> Result<(), ObjProblem> {
+        let piece = &mut self.piece;
+        let vertex = self.before.positions + piece.positions.len() + 1;
+        if let Some(&value) = p.iter().find(|&&x| !COORDINATE.accepts(x)) {
+            return Err(if value.is_finite() {
+                ObjProblem::VertexOutOfRange { vertex, value }
+            } else {
+                ObjProblem::NonFiniteVertex { vertex }
+            });
+        }
+        piece.positions.push(Vec3::from_array(p));
+        match (color, piece.vertex_without_color) {
+            (_, true) => {}
+            (Some(color), false) => piece.colors.push(color),
+            (None, false) => {
+                piece.vertex_without_color = true;
+                piece.colors = Vec::new();
+            }
         }
         Ok(())
     }
@@ -448,6 +463,34 @@ fn plain_corners(line: &[u8], counts: [usize; 3], corners: &mut Vec<Corner>) -> 
     }
 }
 
+/// The position of the `v` statement `line` read byte by byte when it is plain: `v` and three
+/// plain decimals (see [`decimal_at`]) apart by ASCII white space, and nothing more (no
+/// colour). `None` for any other line, which is read by words as it would be without this
+/// path: on the 1.31M-triangle icosphere this reads its vertices in about half the time.
+fn plain_vertex(line: &[u8]) -> Option<[f32; 3]> {
+    let skip_space = |at: &mut usize| {
+        while line.get(*at).is_some_and(|&b| is_space(b)) {
+            *at += 1;
+        }
+    };
+    let mut at = 0;
+    skip_space(&mut at);
+    if line.get(at) != Some(&b'v') || !line.get(at + 1).is_some_and(|&b| is_space(b)) {
+        return None;
+    }
+    at += 1;
+    let mut xyz = [0.0; 3];
+    for x in &mut xyz {
+        skip_space(&mut at);
+        *x = decimal_at(line, &mut at)?;
+        if line.get(at).is_some_and(|&b| !is_space(b)) {
+            return None;
+        }
+    }
+    skip_space(&mut at);
+    (at == line.len()).then_some(xyz)
+}
+
 /// Index `i` as written, resolved against `count`, when it names one of them.
 #[inline]
 fn existing(i: i64, count: usize) -> Option<u32> {
@@ -513,6 +556,69 @@ mod tests {
         Some(format!("{:?} {missing}", reader.corners))
     }
 
+    /// A generator of pseudo-random numbers below its argument, from `seed`.
+    fn below(mut seed: u64) -> impl FnMut(usize) -> usize {
+        move |n| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) as usize % n
+        }
+    }
+
+    #[test]
+    fn plain_vertices_read_byte_by_byte_as_words_read_them() {
+        let numbers = [
+            "0",
+            "-0",
+            "1",
+            "-1.5",
+            "+2.25",
+            "0.5257311",
+            "-0.8506508",
+            ".5",
+            "1.",
+            "1e3",
+            "inf",
+            "nan",
+            "x",
+            "-",
+            "1.2.3",
+            "16777217",
+            "0.00000000001",
+            "1234567890123456789",
+        ];
+        let spaces = [" ", "  ", "\t", " \r", "\x0b"];
+        let mut next = below(99);
+        let mut plain = 0;
+        for _ in 0..20_000 {
+            let mut line = String::from(["v ", " v ", "v\t", "vn ", "v"][next(5)]);
+            // Mostly three plain decimals, so that whole vertices read.
+            let count = if next(4) > 0 { 3 } else { next(7) };
+            for _ in 0..count {
+                line += numbers[if next(6) > 0 {
+                    next(7)
+                } else {
+                    next(numbers.len())
+                }];
+                line += spaces[next(spaces.len())];
+            }
+            let mut words = AsciiWords(&line);
+            let by_words = (words.next() == Some("v"))
+                .then(|| three_numbers(&mut words))
+                .flatten()
+                .filter(|_| vertex_color(&mut words.clone()).is_none());
+            if let Some(p) = plain_vertex(line.as_bytes()) {
+                plain += 1;
+                let bits = |p: [f32; 3]| p.map(f32::to_bits);
+                assert_eq!(Some(bits(p)), by_words.map(bits), "{line:?}");
+                // Nothing follows the position: no colour.
+                assert_eq!(words.next(), None, "{line:?}");
+            }
+        }
+        assert!(plain > 1_000, "{plain} plain vertices of 20000");
+    }
+
     #[test]
     fn plain_faces_read_byte_by_byte_as_words_read_them() {
         let before = Counts {
@@ -551,13 +657,7 @@ mod tests {
             "12345678901234567890",
             "000000000000000000001",
         ];
-        let mut seed = 12345u64;
-        let mut next = |n: usize| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 33) as usize % n
-        };
+        let mut next = below(12345);
         let mut plain = 0;
         for _ in 0..20_000 {
             let spaces = [" ", "  ", "\t", " \r"];

@@ -3,6 +3,7 @@
 //! normals took a fifth of its time on the 1.31M-triangle icosphere.
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use super::face_list::Mesh;
 use super::geometry::ModelGeometry;
@@ -23,7 +24,8 @@ pub fn placed_shape(object: &Object, geometry: &ModelGeometry, centre: Vec3) -> 
     if all_used(&geometry.triangles, geometry.positions.len()) {
         return Mesh {
             positions,
-            triangles: geometry.triangles.clone(),
+            // Copied on every core: 16 MB for the 1.31M-triangle icosphere.
+            triangles: geometry.triangles.par_iter().copied().collect(),
             colors: geometry.colors.clone(),
             ..Mesh::default()
         };
