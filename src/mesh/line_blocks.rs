@@ -8,7 +8,7 @@ use std::io::{self, Read, Take};
 use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 
 /// Bytes of the first block read (less when the block size asked for is less).
-const FIRST_BLOCK: usize = 1 << 20;
+const FIRST_BLOCK: usize = 1 << 22;
 
 /// Why reading the blocks stopped early: the file could not be read, or the caller refused a
 /// block.
