@@ -33,10 +33,7 @@ fn plain_decimal(bytes: &[u8]) -> Option<f32> {
 /// word when that byte ends it. `None` (`*at` anywhere) when it is no plain decimal.
 #[inline]
 pub fn decimal_at(bytes: &[u8], at: &mut usize) -> Option<f32> {
-    let negative = bytes.get(*at) == Some(&b'-');
-    if matches!(bytes.get(*at), Some(b'-' | b'+')) {
-        *at += 1;
-    }
+    let negative = sign_at(bytes, at);
     let (mut mantissa, mut count, mut point) = (0u64, 0usize, None);
     while let Some(&b) = bytes.get(*at) {
         match b {
@@ -71,14 +68,21 @@ pub fn parse_index(word: &str) -> Option<i64> {
     }
 }
 
-/// The index at `bytes[*at..]`, an optional sign and 1 to 18 digits (which cannot overflow),
-/// with `*at` moved past it; `None` where there are no digits or more than 18.
+/// Whether `bytes[*at..]` starts with `-`; a sign (`-` or `+`) is stepped over.
 #[inline]
-pub fn index_at(bytes: &[u8], at: &mut usize) -> Option<i64> {
+fn sign_at(bytes: &[u8], at: &mut usize) -> bool {
     let negative = bytes.get(*at) == Some(&b'-');
     if matches!(bytes.get(*at), Some(b'-' | b'+')) {
         *at += 1;
     }
+    negative
+}
+
+/// The index at `bytes[*at..]`, an optional sign and 1 to 18 digits (which cannot overflow),
+/// with `*at` moved past it; `None` where there are no digits or more than 18.
+#[inline]
+pub fn index_at(bytes: &[u8], at: &mut usize) -> Option<i64> {
+    let negative = sign_at(bytes, at);
     let start = *at;
     let mut value = 0i64;
     while let Some(&b) = bytes.get(*at).filter(|b| b.is_ascii_digit()) {
