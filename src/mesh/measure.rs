@@ -259,32 +259,48 @@ struct EdgeCounts {
 ///
 /// The edges are gathered by their lower end (a counting sort: two passes, no comparisons),
 /// then each vertex's few edges are sorted on their own, the vertices shared out among the
-/// cores: a mesh's edges in about a third of the time one sort of them all took.
+/// cores: a mesh's edges in about a third of the time one sort of them all took. Both passes
+/// of the counting sort run on every core, each core reading all the triangles and writing
+/// only the rows of its own range of vertices (see [`by_lower_end`]).
 fn edge_counts(triangles: &[[u32; 3]], vertices: usize) -> EdgeCounts {
-    let edges = |&[a, b, c]: &[u32; 3]| {
-        [(a, b), (b, c), (c, a)]
-            .into_iter()
-            .filter(|(from, to)| from != to)
-    };
-    // Edges by lower end, as compressed rows: ends[start[v]..start[v + 1]].
+    let ranges = rayon::current_num_threads().clamp(1, MAX_RANGES);
+    let per_range = vertices.div_ceil(ranges).max(1);
+    // Row lengths: start[v + 1] counts the edges whose lower end is v.
     let mut start = vec![0u32; vertices + 1];
-    for (from, to) in triangles.iter().flat_map(edges) {
-        start[from.min(to) as usize + 1] += 1;
-    }
+    start[1..]
+        .par_chunks_mut(per_range)
+        .enumerate()
+        .for_each(|(r, counts)| {
+            by_lower_end(triangles, r * per_range, counts.len(), |k, _| {
+                counts[k] += 1
+            })
+        });
+    // Edges by lower end, as compressed rows: ends[start[v]..start[v + 1]].
     for v in 0..vertices {
         start[v + 1] += start[v];
     }
-    let mut fill = start.clone();
     // Each edge's higher end shifted left one bit, and its direction in bit 0: the two uses of
-    // one edge sort side by side.
+    // one edge sort side by side. Each range fills its own stretch of `ends`.
     let mut ends = vec![0u32; start[vertices] as usize];
-    for (from, to) in triangles.iter().flat_map(edges) {
-        let (lo, hi) = (from.min(to), from.max(to));
-        debug_assert!(hi < 1 << 31, "vertex ids fit in 31 bits");
-        ends[fill[lo as usize] as usize] = hi << 1 | (from > to) as u32;
-        fill[lo as usize] += 1;
+    let mut stretches = Vec::with_capacity(ranges);
+    let mut rest = &mut ends[..];
+    for first in (0..vertices).step_by(per_range) {
+        let last = (first + per_range).min(vertices);
+        let (stretch, after) =
+            std::mem::take(&mut rest).split_at_mut((start[last] - start[first]) as usize);
+        stretches.push((first, last, stretch));
+        rest = after;
     }
-    drop(fill);
+    stretches
+        .into_par_iter()
+        .for_each(|(first, last, stretch)| {
+            let base = start[first];
+            let mut fill: Vec<u32> = start[first..last].iter().map(|&s| s - base).collect();
+            by_lower_end(triangles, first, last - first, |k, end| {
+                stretch[fill[k] as usize] = end;
+                fill[k] += 1;
+            });
+        });
     // Rows of about PIECE edges, each counted on its own.
     let mut rows: Vec<(usize, &mut [u32])> = Vec::new();
     let mut rest = &mut ends[..];
@@ -319,6 +335,32 @@ fn edge_counts(triangles: &[[u32; 3]], vertices: usize) -> EdgeCounts {
             non_manifold: a.non_manifold + b.non_manifold,
             misoriented: a.misoriented + b.misoriented,
         })
+}
+
+/// Most vertex ranges [`edge_counts`] splits a mesh into: each range reads every triangle once
+/// more.
+const MAX_RANGES: usize = 8;
+
+/// Calls `edge(k, end)` for each edge of `triangles` whose lower end is vertex `first + k`,
+/// `k < len`, in triangle order: `end` is its higher end shifted left one bit, with its
+/// direction (whether it runs from higher to lower) in bit 0.
+#[inline(always)]
+fn by_lower_end(
+    triangles: &[[u32; 3]],
+    first: usize,
+    len: usize,
+    mut edge: impl FnMut(usize, u32),
+) {
+    for &[a, b, c] in triangles {
+        for (from, to) in [(a, b), (b, c), (c, a)] {
+            let (lo, hi) = (from.min(to), from.max(to));
+            debug_assert!(hi < 1 << 31, "vertex ids fit in 31 bits");
+            let k = (lo as usize).wrapping_sub(first);
+            if from != to && k < len {
+                edge(k, hi << 1 | (from > to) as u32);
+            }
+        }
+    }
 }
 
 /// Counts the edges of one vertex's row (higher ends and directions, see [`edge_counts`]).
@@ -442,6 +484,51 @@ mod tests {
         // The second part alone: its ids start from its own first position.
         let alone = measure(&[(&moved, &cube.triangles)]);
         assert!((alone.volume.unwrap() - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn edges_are_counted_alike_whatever_the_number_of_vertex_ranges() {
+        // Random triangles on few vertices: shared, repeated, turned-over and degenerate edges.
+        let mut state = 11u64;
+        let mut next = |n: u64| {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((state >> 33) % n) as u32
+        };
+        let vertices = 97;
+        let triangles: Vec<[u32; 3]> = (0..400).map(|_| [next(97), next(97), next(97)]).collect();
+        // Each undirected edge's uses, by direction, counted one triangle at a time.
+        let mut uses = std::collections::HashMap::<(u32, u32), (usize, usize)>::new();
+        for &[a, b, c] in &triangles {
+            for (from, to) in [(a, b), (b, c), (c, a)] {
+                if from != to {
+                    let entry = uses.entry((from.min(to), from.max(to))).or_default();
+                    if from < to {
+                        entry.0 += 1
+                    } else {
+                        entry.1 += 1
+                    }
+                }
+            }
+        }
+        let count = |n: usize| uses.values().filter(|(f, b)| f + b == n).count();
+        let misoriented = uses
+            .values()
+            .filter(|&&u| u == (2, 0) || u == (0, 2))
+            .count();
+        for threads in [1, 3, 8] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let edges = pool.install(|| edge_counts(&triangles, vertices));
+            let three_or_more = uses.values().filter(|(f, b)| f + b > 2).count();
+            assert_eq!(edges.boundary, count(1), "{threads} threads");
+            assert_eq!(edges.non_manifold, three_or_more, "{threads} threads");
+            assert_eq!(edges.misoriented, misoriented, "{threads} threads");
+        }
+        assert!(count(1) > 0 && misoriented > 0 && count(3) > 0);
     }
 
     #[test]
