@@ -24,8 +24,8 @@ use super::line_blocks::{Stop, for_each_line_block};
 use rayon::prelude::*;
 
 use super::obj_error::{ObjError, ObjProblem};
-use super::obj_piece::{Counts, NONE, Piece, count_statements, read_piece};
-use super::used_vertices::all_used;
+use super::obj_piece::{Counts, Piece, count_statements, read_piece};
+use super::used_vertices::{all_used, keep_used};
 use crate::input_file::{MAX_MODEL_BYTES, open_bounded, read_bounded};
 
 /// What a model file is called in refusals.
@@ -304,26 +304,10 @@ impl Statements {
             positions.shrink_to_fit();
             (positions, given.then_some(self.colors))
         } else {
-            // Renumber the vertices faces use, in file order.
-            let mut new_index = vec![NONE; self.positions.len()];
-            for &i in triangles.iter().flatten() {
-                new_index[i as usize] = 0;
-            }
-            let used = new_index.iter().filter(|&&i| i == 0).count();
-            let mut positions = Vec::with_capacity(used);
-            let mut colors = given.then(|| Vec::with_capacity(used));
-            for (k, (slot, &p)) in new_index.iter_mut().zip(&self.positions).enumerate() {
-                if *slot == 0 {
-                    *slot = positions.len() as u32;
-                    positions.push(p);
-                    if let Some(colors) = &mut colors {
-                        colors.push(self.colors[k]);
-                    }
-                }
-            }
-            triangles
-                .par_iter_mut()
-                .for_each(|t| *t = t.map(|i| new_index[i as usize]));
+            // Keep the vertices faces use, in file order.
+            let kept = keep_used(&mut triangles, self.positions.len());
+            let positions = kept.iter().map(|&k| self.positions[k as usize]).collect();
+            let colors = given.then(|| kept.iter().map(|&k| self.colors[k as usize]).collect());
             (positions, colors)
         };
         triangles.shrink_to_fit();

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use super::face_list::Mesh;
 use super::geometry::ModelGeometry;
 use super::tessellate::placed_positions;
-use super::used_vertices::all_used;
+use super::used_vertices::{all_used, keep_used};
 use crate::scene::Object;
 
 /// The world positions of the vertices `geometry`'s triangles use, placed as
@@ -30,29 +30,16 @@ pub fn placed_shape(object: &Object, geometry: &ModelGeometry, centre: Vec3) -> 
             ..Mesh::default()
         };
     }
-    // Renumber the used vertices in order.
-    let mut used = vec![false; geometry.positions.len()];
-    for &i in geometry.triangles.iter().flatten() {
-        used[i as usize] = true;
-    }
-    let mut new_index = vec![u32::MAX; used.len()];
-    let mut mesh = Mesh {
-        colors: geometry.colors.as_ref().map(|_| Vec::new()),
+    // Keep the used vertices, in order.
+    let mut triangles = geometry.triangles.clone();
+    let kept = keep_used(&mut triangles, geometry.positions.len());
+    Mesh {
+        positions: kept.iter().map(|&k| positions[k as usize]).collect(),
+        triangles,
+        colors: (geometry.colors.as_ref())
+            .map(|colors| kept.iter().map(|&k| colors[k as usize]).collect()),
         ..Mesh::default()
-    };
-    for (k, _) in used.iter().enumerate().filter(|(_, u)| **u) {
-        new_index[k] = mesh.positions.len() as u32;
-        mesh.positions.push(positions[k]);
-        if let (Some(out), Some(colors)) = (&mut mesh.colors, &geometry.colors) {
-            out.push(colors[k]);
-        }
     }
-    mesh.triangles = geometry
-        .triangles
-        .iter()
-        .map(|t| t.map(|i| new_index[i as usize]))
-        .collect();
-    mesh
 }
 
 #[cfg(test)]

@@ -50,6 +50,27 @@ pub fn all_used(triangles: &[[u32; 3]], vertices: usize) -> bool {
         .all(|(k, &word)| word == if k + 1 == words { last } else { u64::MAX })
 }
 
+/// Renumbers `triangles` (indices below `vertices`) onto the vertices they use, kept in their
+/// order, and returns the old number of each kept vertex: a model's unused vertices left out.
+pub fn keep_used(triangles: &mut [[u32; 3]], vertices: usize) -> Vec<u32> {
+    const UNUSED: u32 = u32::MAX;
+    let mut new_index = vec![UNUSED; vertices];
+    for &i in triangles.iter().flatten() {
+        new_index[i as usize] = 0;
+    }
+    let mut kept = Vec::new();
+    for (old, slot) in new_index.iter_mut().enumerate() {
+        if *slot != UNUSED {
+            *slot = kept.len() as u32;
+            kept.push(old as u32);
+        }
+    }
+    triangles
+        .par_iter_mut()
+        .for_each(|t| *t = t.map(|i| new_index[i as usize]));
+    kept
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -78,6 +99,15 @@ mod tests {
         }
         // An index out of range marks nothing.
         assert!(all_used(&[[0, 1, 2]], 3));
+    }
+
+    #[test]
+    fn keeping_the_used_vertices_renumbers_them_in_order() {
+        // Vertices 0, 2 and 5 of 7 unused.
+        let mut triangles = vec![[1, 3, 4], [4, 3, 6], [6, 1, 1]];
+        let kept = keep_used(&mut triangles, 7);
+        assert_eq!(kept, [1, 3, 4, 6]);
+        assert_eq!(triangles, [[0, 1, 2], [2, 1, 3], [3, 0, 0]]);
         assert!(!all_used(&[[0, 1, 5]], 3));
         assert!(all_used(&[], 0));
     }
