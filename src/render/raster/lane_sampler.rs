@@ -9,7 +9,7 @@
 //! at the edges between levels.
 
 use crate::mesh::texture::{
-    Filter, MipFilter, MipLevel, Sampler, SrgbTable, Texels, Texture, U16_STEP, neighbours,
+    Filter, MipFilter, MipLevel, Sampler, SrgbTable, Texels, Texture, U16_STEP, Wrap, neighbours,
     wrapped_fast,
 };
 use crate::render::simd::{Lanes, Lanes8, ROUND_MAGIC, V3, WIDTH};
@@ -119,16 +119,32 @@ fn read_level<L: Lanes8>(
             let (x, y) = (x - half, y - half);
             let (x0, y0) = (floor_small(x)?, floor_small(y)?);
             let (fx, fy) = (x - x0, y - y0);
-            let (i, j) = (x0.to_array(), y0.to_array());
             let mut index = [[0u32; WIDTH]; 4];
-            for k in 0..WIDTH {
-                let (i0, i1) = neighbours(i[k], width, wrap_x);
-                let (j0, j1) = neighbours(j[k], height, wrap_y);
-                let (row0, row1) = (j0 * width, j1 * width);
-                index[0][k] = row0 + i0;
-                index[1][k] = row0 + i1;
-                index[2][k] = row1 + i0;
-                index[3][k] = row1 + i1;
+            match (
+                lane_neighbours(x0, width, wrap_x),
+                lane_neighbours(y0, height, wrap_y),
+            ) {
+                (Some((i0, i1)), Some((j0, j1))) => {
+                    // Whole numbers below width × height ≤ 2^24: exact.
+                    let w = L::splat(width as f32);
+                    let (row0, row1) = (j0 * w, j1 * w);
+                    index[0] = (row0 + i0).to_whole_u32();
+                    index[1] = (row0 + i1).to_whole_u32();
+                    index[2] = (row1 + i0).to_whole_u32();
+                    index[3] = (row1 + i1).to_whole_u32();
+                }
+                _ => {
+                    let (i, j) = (x0.to_array(), y0.to_array());
+                    for k in 0..WIDTH {
+                        let (i0, i1) = neighbours(i[k], width, wrap_x);
+                        let (j0, j1) = neighbours(j[k], height, wrap_y);
+                        let (row0, row1) = (j0 * width, j1 * width);
+                        index[0][k] = row0 + i0;
+                        index[1][k] = row0 + i1;
+                        index[2][k] = row1 + i0;
+                        index[3][k] = row1 + i1;
+                    }
+                }
             }
             // Four calls, not `index.map(..)`: the compiler leaves a map's closure out of line.
             let (t00, t10) = (texels(level, &index[0]), texels(level, &index[1]));
@@ -137,6 +153,28 @@ fn read_level<L: Lanes8>(
             let bottom = t01 + (t11 - t01) * fx;
             Some(top + (bottom - top) * fy)
         }
+    }
+}
+
+/// [`neighbours`] in lanes, for whole-number texel coordinates `texel` within ±2^22 in a row of
+/// `size` texels: the indices (whole numbers in 0..size) that `texel` and `texel + 1` read,
+/// under repeat or clamp-to-edge wrapping; `None` under mirrored repeat, left to the lane-by-lane
+/// [`neighbours`]. Every step is exact on whole numbers below 2^24.
+#[inline(always)]
+fn lane_neighbours<L: Lanes>(texel: L, size: u32, wrap: Wrap) -> Option<(L, L)> {
+    let (zero, one) = (L::splat(0.0), L::splat(1.0));
+    let (n, last) = (L::splat(size as f32), L::splat(size as f32 - 1.0));
+    match wrap {
+        Wrap::Repeat => {
+            // texel − n·⌊texel / n⌋, the quotient's rounding put right by one step either way.
+            let rest = texel - n * floor(texel / n);
+            let rest = L::select(rest.lt(zero), rest + n, rest);
+            let rest = L::select(rest.gt(last), rest - n, rest);
+            let next = rest + one;
+            Some((rest, L::select(next.gt(last), zero, next)))
+        }
+        Wrap::ClampToEdge => Some((texel.max(zero).min(last), (texel + one).max(zero).min(last))),
+        Wrap::MirroredRepeat => None,
     }
 }
 
@@ -198,7 +236,7 @@ mod tests {
     use glam::{Vec2, Vec3, Vec4};
 
     use super::*;
-    use crate::mesh::texture::{MipLevel, Wrap, mip_chain};
+    use crate::mesh::texture::{MipLevel, mip_chain};
     use crate::render::simd::{F32x8, LanesJob, run_on_best_lanes};
 
     /// A `width × height` texture whose level 0 holds sRGB bytes from `seed`, with its chain.

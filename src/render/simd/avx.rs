@@ -163,6 +163,12 @@ where
         bytemuck::cast(self.0)
     }
 
+    #[inline(always)]
+    fn to_whole_u32(self) -> [u32; WIDTH] {
+        // SAFETY: as in `avx!`.
+        bytemuck::cast(unsafe { _mm256_cvttps_epi32(self.0) })
+    }
+
     type Pair = <Self as Pairs>::Pair;
 
     #[inline(always)]

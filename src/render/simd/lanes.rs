@@ -212,6 +212,9 @@ pub trait Lanes8: Lanes {
     fn from_array(values: [f32; WIDTH]) -> Self;
     /// The lanes in order.
     fn to_array(self) -> [f32; WIDTH];
+    /// The lanes as integers, for lanes that hold whole numbers in [0, 2^24] (where `f32` is
+    /// exact): the conversion in one instruction, not one a lane.
+    fn to_whole_u32(self) -> [u32; WIDTH];
 
     /// Sixteen lanes: two batches of eight worked on at once. One AVX-512 register where the
     /// CPU has it, else the two halves side by side ([`Twice`]).
@@ -231,6 +234,11 @@ impl Lanes8 for F32x8 {
     #[inline(always)]
     fn to_array(self) -> [f32; WIDTH] {
         F32x8::to_array(self)
+    }
+
+    #[inline(always)]
+    fn to_whole_u32(self) -> [u32; WIDTH] {
+        bytemuck::cast(self.fast_trunc_int())
     }
 
     type Pair = Twice<F32x8>;
