@@ -385,6 +385,17 @@ mod tests {
     use super::*;
     use crate::mesh::{cuboid, icosahedron};
 
+    /// Pseudo-random numbers below 2³¹ from `seed`, the same every run (a 64-bit LCG's high bits).
+    fn draws(seed: u64) -> impl FnMut() -> u64 {
+        let mut state = seed;
+        move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            state >> 33
+        }
+    }
+
     /// `triangles` with every triangle given its own three corners, as a flat-shaded export.
     fn unshared(positions: &[Vec3], triangles: &[[u32; 3]]) -> (Vec<Vec3>, Vec<[u32; 3]>) {
         let corners: Vec<Vec3> = triangles
@@ -489,13 +500,8 @@ mod tests {
     #[test]
     fn edges_are_counted_alike_whatever_the_number_of_vertex_ranges() {
         // Random triangles on few vertices: shared, repeated, turned-over and degenerate edges.
-        let mut state = 11u64;
-        let mut next = |n: u64| {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((state >> 33) % n) as u32
-        };
+        let mut draw = draws(11);
+        let mut next = |n: u64| (draw() % n) as u32;
         let vertices = 97;
         let triangles: Vec<[u32; 3]> = (0..400).map(|_| [next(97), next(97), next(97)]).collect();
         // Each undirected edge's uses, by direction, counted one triangle at a time.
@@ -535,13 +541,8 @@ mod tests {
     fn welding_joins_exactly_the_positions_of_equal_bits_and_keeps_the_first() {
         // Positions drawn from a few values, ±0 among them: two parts' one after another.
         let values = [0.0, -0.0, 1.0, 0.5, -2.0];
-        let mut state = 7u64;
-        let mut next = move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            values[(state >> 33) as usize % values.len()]
-        };
+        let mut draw = draws(7);
+        let mut next = move || values[draw() as usize % values.len()];
         let a: Vec<Vec3> = (0..300)
             .map(|_| Vec3::new(next(), next(), next()))
             .collect();
