@@ -25,8 +25,8 @@ pub use limits::{MAX_TEXTURE_BASE_TEXELS, MAX_TEXTURE_DECLARED_TEXELS, MAX_TEXTU
 pub use load::load_texture;
 #[cfg(test)]
 pub(crate) use mip_chain::mip_chain;
+pub(crate) use sampler::neighbours;
 pub use sampler::{Filter, MipFilter, Sampler, Wrap};
-pub(crate) use sampler::{neighbours, wrapped_fast};
 pub use texels::Texels;
 pub(crate) use texels::{SrgbTable, U16_STEP};
 pub use texture::{MipLevel, Texture};

@@ -153,7 +153,7 @@ fn is_small(x: f32) -> bool {
 /// divisions a pixel on the Duck, whose minification reads the nearest texel of two levels)
 /// where `texel` is small: a 32-bit one, or a mask on power-of-two sizes.
 #[inline(always)]
-pub(crate) fn wrapped_fast(texel: f32, size: u32, wrap: Wrap) -> u32 {
+fn wrapped_fast(texel: f32, size: u32, wrap: Wrap) -> u32 {
     if !is_small(texel) {
         return wrapped(texel, size, wrap);
     }

@@ -10,7 +10,6 @@
 
 use crate::mesh::texture::{
     Filter, MipFilter, MipLevel, Sampler, SrgbTable, Texels, Texture, U16_STEP, Wrap, neighbours,
-    wrapped_fast,
 };
 use crate::render::simd::{Lanes, Lanes8, ROUND_MAGIC, V3, WIDTH};
 
@@ -105,12 +104,10 @@ fn read_level<L: Lanes8>(
     match filter {
         Filter::Nearest => {
             let (i, j) = (floor_small(x)?, floor_small(y)?);
-            let (i, j) = (i.to_array(), j.to_array());
-            let mut index = [0u32; WIDTH];
-            for k in 0..WIDTH {
-                let column = wrapped_fast(i[k], width, wrap_x);
-                index[k] = wrapped_fast(j[k], height, wrap_y) * width + column;
-            }
+            let (column, _) = lane_neighbours(i, width, wrap_x);
+            let (row, _) = lane_neighbours(j, height, wrap_y);
+            // Whole numbers below width × height ≤ 2^24: exact.
+            let index = (row * L::splat(width as f32) + column).to_whole_u32();
             Some(texels(level, &index))
         }
         Filter::Linear => {
@@ -119,33 +116,17 @@ fn read_level<L: Lanes8>(
             let (x, y) = (x - half, y - half);
             let (x0, y0) = (floor_small(x)?, floor_small(y)?);
             let (fx, fy) = (x - x0, y - y0);
-            let mut index = [[0u32; WIDTH]; 4];
-            match (
-                lane_neighbours(x0, width, wrap_x),
-                lane_neighbours(y0, height, wrap_y),
-            ) {
-                (Some((i0, i1)), Some((j0, j1))) => {
-                    // Whole numbers below width × height ≤ 2^24: exact.
-                    let w = L::splat(width as f32);
-                    let (row0, row1) = (j0 * w, j1 * w);
-                    index[0] = (row0 + i0).to_whole_u32();
-                    index[1] = (row0 + i1).to_whole_u32();
-                    index[2] = (row1 + i0).to_whole_u32();
-                    index[3] = (row1 + i1).to_whole_u32();
-                }
-                _ => {
-                    let (i, j) = (x0.to_array(), y0.to_array());
-                    for k in 0..WIDTH {
-                        let (i0, i1) = neighbours(i[k], width, wrap_x);
-                        let (j0, j1) = neighbours(j[k], height, wrap_y);
-                        let (row0, row1) = (j0 * width, j1 * width);
-                        index[0][k] = row0 + i0;
-                        index[1][k] = row0 + i1;
-                        index[2][k] = row1 + i0;
-                        index[3][k] = row1 + i1;
-                    }
-                }
-            }
+            let (i0, i1) = lane_neighbours(x0, width, wrap_x);
+            let (j0, j1) = lane_neighbours(y0, height, wrap_y);
+            // Whole numbers below width × height ≤ 2^24: exact.
+            let w = L::splat(width as f32);
+            let (row0, row1) = (j0 * w, j1 * w);
+            let index = [
+                (row0 + i0).to_whole_u32(),
+                (row0 + i1).to_whole_u32(),
+                (row1 + i0).to_whole_u32(),
+                (row1 + i1).to_whole_u32(),
+            ];
             // Four calls, not `index.map(..)`: the compiler leaves a map's closure out of line.
             let (t00, t10) = (texels(level, &index[0]), texels(level, &index[1]));
             let (t01, t11) = (texels(level, &index[2]), texels(level, &index[3]));
@@ -157,11 +138,11 @@ fn read_level<L: Lanes8>(
 }
 
 /// [`neighbours`] in lanes, for whole-number texel coordinates `texel` within ±2^22 in a row of
-/// `size` texels: the indices (whole numbers in 0..size) that `texel` and `texel + 1` read,
-/// under repeat or clamp-to-edge wrapping; `None` under mirrored repeat, left to the lane-by-lane
-/// [`neighbours`]. Every step is exact on whole numbers below 2^24.
+/// `size` texels: the indices (whole numbers in 0..size) that `texel` and `texel + 1` read, the
+/// first of them what the one-point sampler's `wrapped_fast` gives. Repeat and clamp-to-edge are worked out in lanes, every
+/// step exact on whole numbers below 2^24; mirrored repeat lane by lane.
 #[inline(always)]
-fn lane_neighbours<L: Lanes>(texel: L, size: u32, wrap: Wrap) -> Option<(L, L)> {
+fn lane_neighbours<L: Lanes8>(texel: L, size: u32, wrap: Wrap) -> (L, L) {
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
     let (n, last) = (L::splat(size as f32), L::splat(size as f32 - 1.0));
     match wrap {
@@ -171,10 +152,18 @@ fn lane_neighbours<L: Lanes>(texel: L, size: u32, wrap: Wrap) -> Option<(L, L)> 
             let rest = L::select(rest.lt(zero), rest + n, rest);
             let rest = L::select(rest.gt(last), rest - n, rest);
             let next = rest + one;
-            Some((rest, L::select(next.gt(last), zero, next)))
+            (rest, L::select(next.gt(last), zero, next))
         }
-        Wrap::ClampToEdge => Some((texel.max(zero).min(last), (texel + one).max(zero).min(last))),
-        Wrap::MirroredRepeat => None,
+        Wrap::ClampToEdge => (texel.max(zero).min(last), (texel + one).max(zero).min(last)),
+        Wrap::MirroredRepeat => {
+            let texel = texel.to_array();
+            let (mut first, mut second) = ([0.0; WIDTH], [0.0; WIDTH]);
+            for k in 0..WIDTH {
+                let (a, b) = neighbours(texel[k], size, wrap);
+                (first[k], second[k]) = (a as f32, b as f32);
+            }
+            (L::from_array(first), L::from_array(second))
+        }
     }
 }
 
