@@ -79,11 +79,7 @@ impl Mesh {
             .with_min_len(PASS_CHUNK)
             .filter(|&t| {
                 let [a, b, c] = self.corners(t);
-                // `normalize_or_zero` gives zero exactly where the squared length is zero, not
-                // finite or NaN (its reciprocal square root then is not finite and positive);
-                // tested without the square root and division.
-                let squared = (b - a).cross(c - a).length_squared();
-                !(squared > 0.0 && squared < f32::INFINITY)
+                has_zero_area(a, b, c)
             })
             .count()
     }
@@ -139,6 +135,16 @@ impl Mesh {
         self.triangles
             .extend(other.triangles.iter().map(|t| t.map(|i| i + base)));
     }
+}
+
+/// Whether the triangle `a b c` has zero area as [`Mesh::zero_area_triangles`] counts it: its
+/// edges' cross product has no direction (`normalize_or_zero` gives zero). That is exactly
+/// where the cross product's squared length is zero, not finite or NaN (its reciprocal square
+/// root then is not finite and positive), tested without the square root and division.
+#[inline]
+pub(crate) fn has_zero_area(a: Vec3, b: Vec3, c: Vec3) -> bool {
+    let squared = (b - a).cross(c - a).length_squared();
+    !(squared > 0.0 && squared < f32::INFINITY)
 }
 
 /// The smallest and largest coordinates of `points` and of `start` (min, max), per axis: the

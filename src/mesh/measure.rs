@@ -15,6 +15,7 @@ use glam::{DVec3, Vec3};
 
 use rayon::prelude::*;
 
+use super::face_list::has_zero_area;
 use super::weld::{self, Repeats, coordinate_bits};
 
 /// What [`measure`] finds. Lengths in the mesh's units, areas in their square, volumes in their
@@ -235,7 +236,7 @@ fn measure_piece(positions: &[Vec3], triangles: &[[u32; 3]]) -> (Measurements, f
             Some((lo, hi)) => (lo.min(pa).min(pb).min(pc), hi.max(pa).max(pb).max(pc)),
         });
         m.triangles += 1;
-        if (pb - pa).cross(pc - pa).normalize_or_zero() == Vec3::ZERO {
+        if has_zero_area(pa, pb, pc) {
             m.degenerate_triangles += 1;
         }
         let [da, db, dc] = [pa, pb, pc].map(Vec3::as_dvec3);
