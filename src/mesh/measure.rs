@@ -364,13 +364,26 @@ fn by_lower_end(
     }
 }
 
+/// Rows of at most this many edge uses are sorted by insertion, in line: a closed mesh's row
+/// holds about six, and calling the library sort for each of them (with a binary search for
+/// each edge's uses) made `rastray info` on the 1.31M-triangle icosphere about 3% slower.
+const SHORT_ROW: usize = 16;
+
 /// Counts the edges of one vertex's row (higher ends and directions, see [`edge_counts`]).
 fn count_row(row: &mut [u32], counts: &mut EdgeCounts) {
-    row.sort_unstable();
+    if row.len() <= SHORT_ROW {
+        insertion_sort(row);
+    } else {
+        row.sort_unstable();
+    }
     let mut start = 0;
     while start < row.len() {
         let edge = row[start] >> 1;
-        let end = start + row[start..].partition_point(|k| k >> 1 == edge);
+        // Uses of one edge are few (two in a closed mesh): found one by one.
+        let mut end = start + 1;
+        while end < row.len() && row[end] >> 1 == edge {
+            end += 1;
+        }
         match end - start {
             1 => counts.boundary += 1,
             2 if row[start] == row[start + 1] => counts.misoriented += 1,
@@ -378,6 +391,20 @@ fn count_row(row: &mut [u32], counts: &mut EdgeCounts) {
             _ => counts.non_manifold += 1,
         }
         start = end;
+    }
+}
+
+/// Sorts the few numbers of `row` in ascending order.
+#[inline]
+fn insertion_sort(row: &mut [u32]) {
+    for i in 1..row.len() {
+        let value = row[i];
+        let mut j = i;
+        while j > 0 && row[j - 1] > value {
+            row[j] = row[j - 1];
+            j -= 1;
+        }
+        row[j] = value;
     }
 }
 
@@ -536,6 +563,21 @@ mod tests {
             assert_eq!(edges.misoriented, misoriented, "{threads} threads");
         }
         assert!(count(1) > 0 && misoriented > 0 && count(3) > 0);
+    }
+
+    #[test]
+    fn short_rows_are_sorted_as_the_library_sorts_them() {
+        let mut draw = draws(5);
+        for len in 0..=SHORT_ROW + 1 {
+            for _ in 0..50 {
+                // Few distinct values: repeats, as the two uses of one edge are.
+                let mut row: Vec<u32> = (0..len).map(|_| (draw() % 8) as u32).collect();
+                let mut sorted = row.clone();
+                sorted.sort_unstable();
+                insertion_sort(&mut row);
+                assert_eq!(row, sorted);
+            }
+        }
     }
 
     #[test]
