@@ -25,7 +25,7 @@ use rayon::prelude::*;
 
 use super::obj_error::{ObjError, ObjProblem};
 use super::obj_piece::{Counts, Piece, count_statements, read_piece};
-use super::used_vertices::{all_used, keep_used};
+use super::used_vertices::drop_unused;
 use crate::input_file::{MAX_MODEL_BYTES, open_bounded, read_bounded};
 
 /// What a model file is called in refusals.
@@ -298,17 +298,19 @@ impl Statements {
     fn finish(self) -> Result<ModelGeometry, ObjProblem> {
         let mut triangles = self.triangles;
         let given = !self.vertex_without_color && self.colors.len() == self.positions.len();
-        let (positions, colors) = if all_used(&triangles, self.positions.len()) {
+        let (positions, colors) = match drop_unused(&mut triangles, self.positions.len()) {
             // Every vertex is used (as in nearly every file): the numbering stays as it is.
-            let mut positions = self.positions;
-            positions.shrink_to_fit();
-            (positions, given.then_some(self.colors))
-        } else {
-            // Keep the vertices faces use, in file order.
-            let kept = keep_used(&mut triangles, self.positions.len());
-            let positions = kept.iter().map(|&k| self.positions[k as usize]).collect();
-            let colors = given.then(|| kept.iter().map(|&k| self.colors[k as usize]).collect());
-            (positions, colors)
+            None => {
+                let mut positions = self.positions;
+                positions.shrink_to_fit();
+                (positions, given.then_some(self.colors))
+            }
+            // The vertices faces use, kept in file order.
+            Some(kept) => {
+                let positions = kept.iter().map(|&k| self.positions[k as usize]).collect();
+                let colors = given.then(|| kept.iter().map(|&k| self.colors[k as usize]).collect());
+                (positions, colors)
+            }
         };
         triangles.shrink_to_fit();
         let corner_normals = if self.corner_without_normal || self.normals.is_empty() {

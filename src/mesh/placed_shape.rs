@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use super::face_list::Mesh;
 use super::geometry::ModelGeometry;
 use super::tessellate::placed_positions;
-use super::used_vertices::{all_used, keep_used};
+use super::used_vertices::drop_unused;
 use crate::scene::Object;
 
 /// The world positions of the vertices `geometry`'s triangles use, placed as
@@ -21,24 +21,23 @@ use crate::scene::Object;
 /// If `object` is not a mesh object (a caller bug).
 pub fn placed_shape(object: &Object, geometry: &ModelGeometry, centre: Vec3) -> Mesh {
     let positions = placed_positions(object, geometry, centre);
-    if all_used(&geometry.triangles, geometry.positions.len()) {
-        return Mesh {
+    // Copied on every core: 16 MB for the 1.31M-triangle icosphere.
+    let mut triangles: Vec<[u32; 3]> = geometry.triangles.par_iter().copied().collect();
+    match drop_unused(&mut triangles, geometry.positions.len()) {
+        None => Mesh {
             positions,
-            // Copied on every core: 16 MB for the 1.31M-triangle icosphere.
-            triangles: geometry.triangles.par_iter().copied().collect(),
+            triangles,
             colors: geometry.colors.clone(),
             ..Mesh::default()
-        };
-    }
-    // Keep the used vertices, in order.
-    let mut triangles = geometry.triangles.clone();
-    let kept = keep_used(&mut triangles, geometry.positions.len());
-    Mesh {
-        positions: kept.iter().map(|&k| positions[k as usize]).collect(),
-        triangles,
-        colors: (geometry.colors.as_ref())
-            .map(|colors| kept.iter().map(|&k| colors[k as usize]).collect()),
-        ..Mesh::default()
+        },
+        // Keep the used vertices, in order.
+        Some(kept) => Mesh {
+            positions: kept.iter().map(|&k| positions[k as usize]).collect(),
+            triangles,
+            colors: (geometry.colors.as_ref())
+                .map(|colors| kept.iter().map(|&k| colors[k as usize]).collect()),
+            ..Mesh::default()
+        },
     }
 }
 
