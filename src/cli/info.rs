@@ -68,8 +68,15 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
         // measured once per instance, its file's vertices placed as the instance places them.
         let placed: Vec<PlacedPart> = match &model {
             Some(model) => {
-                let (lo, hi) = model.bounds();
-                let centre = (lo + hi) * 0.5;
+                // The file's centre, which instances are placed about: a pass over its
+                // vertices, taken only for a file that has instances.
+                let centre = std::cell::OnceCell::new();
+                let centre = || {
+                    *centre.get_or_init(|| {
+                        let (lo, hi) = model.bounds();
+                        (lo + hi) * 0.5
+                    })
+                };
                 let mut built = parts.iter().map(|(b, _)| &b.mesh);
                 file_parts
                     .iter()
@@ -87,7 +94,7 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
                             .iter()
                             .map(|instance| {
                                 let to_world =
-                                    instance_transform(object, centre, instance.transform);
+                                    instance_transform(object, centre(), instance.transform);
                                 let moved = p.geometry.positions.iter();
                                 let moved = moved.map(|&q| to_world.transform_point3(q)).collect();
                                 (Cow::Owned(moved), triangles)
