@@ -42,6 +42,8 @@ pub mod render;
 pub mod scene;
 pub mod temporary_file;
 pub mod terminal_image;
+#[cfg(test)]
+mod test_draws;
 pub mod text_escape;
 pub mod tui;
 pub mod warnings;

@@ -412,17 +412,7 @@ fn insertion_sort(row: &mut [u32]) {
 mod tests {
     use super::*;
     use crate::mesh::{cuboid, icosahedron};
-
-    /// Pseudo-random numbers below 2³¹ from `seed`, the same every run (a 64-bit LCG's high bits).
-    fn draws(seed: u64) -> impl FnMut() -> u64 {
-        let mut state = seed;
-        move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            state >> 33
-        }
-    }
+    use crate::test_draws::draws;
 
     /// `triangles` with every triangle given its own three corners, as a flat-shaded export.
     fn unshared(positions: &[Vec3], triangles: &[[u32; 3]]) -> (Vec<Vec3>, Vec<[u32; 3]>) {

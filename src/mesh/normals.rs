@@ -652,13 +652,7 @@ mod tests {
     /// sometimes degenerate), with a colour per position when `colors`: positions repeated
     /// with different colours split points into several entries.
     fn random_mesh(seed: u64, colors: bool) -> Case {
-        let mut state = seed;
-        let mut next = move |n: u64| {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 33) % n
-        };
+        let mut next = crate::test_draws::below(seed);
         let grid: Vec<Vec3> = (0..27)
             .map(|i| Vec3::new((i % 3) as f32, (i / 3 % 3) as f32, (i / 9) as f32 * 0.5))
             .collect();

@@ -557,14 +557,10 @@ mod tests {
         Some(format!("{:?} {missing}", reader.corners))
     }
 
-    /// A generator of pseudo-random numbers below its argument, from `seed`.
-    fn below(mut seed: u64) -> impl FnMut(usize) -> usize {
-        move |n| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 33) as usize % n
-        }
+    /// Pseudo-random numbers below its argument, from `seed`.
+    fn below(seed: u64) -> impl FnMut(usize) -> usize {
+        let mut below = crate::test_draws::below(seed);
+        move |n| below(n as u64) as usize
     }
 
     #[test]

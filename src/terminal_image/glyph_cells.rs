@@ -720,6 +720,7 @@ pub fn encode(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_draws::draws;
 
     /// A picture of `cols` × `rows` cells whose pixel colour is `f(x, y)`.
     fn picture(cols: u32, rows: u32, mut f: impl FnMut(u32, u32) -> [u8; 3]) -> PreviewImage {
@@ -861,11 +862,8 @@ mod tests {
     fn the_best_pattern_beats_every_other_on_a_random_cell() {
         // Brute force over the pixels themselves: the chosen cell's squared error is the least
         // of every pattern of every layer, each drawn in its parts' mean colours.
-        let mut seed = 7u32;
-        let mut next = move || {
-            seed = seed.wrapping_mul(1_103_515_245).wrapping_add(12345);
-            (seed >> 16) as u8
-        };
+        let mut draw = draws(7);
+        let mut next = move || draw() as u8;
         for set in GlyphSet::ALL {
             for _ in 0..20 {
                 let image = picture(1, 1, |_, _| [next(), next(), next()]);
@@ -963,11 +961,7 @@ mod tests {
 
     #[test]
     fn the_table_search_picks_what_the_plain_search_picks() {
-        let mut seed = 11u32;
-        let mut next = move || {
-            seed = seed.wrapping_mul(1_103_515_245).wrapping_add(12345);
-            seed >> 16
-        };
+        let mut next = draws(11);
         for set in GlyphSet::ALL {
             let layers = set.layers();
             let mut tables = SubsetTables::new();
@@ -1001,11 +995,8 @@ mod tests {
         assert_eq!(complete(GlyphSet::Sextant), vec![true, false]);
         assert_eq!(complete(GlyphSet::Braille), vec![true]);
         // Each split gain is bit for bit the sum of the two parts' gains of the full tables.
-        let mut seed = 5u32;
-        let mut next = move || {
-            seed = seed.wrapping_mul(1_103_515_245).wrapping_add(12345);
-            (seed >> 16) as u8
-        };
+        let mut draw = draws(5);
+        let mut next = move || draw() as u8;
         for set in [GlyphSet::Quadrant, GlyphSet::Sextant, GlyphSet::Braille] {
             let layer = &set.layers()[0];
             let count = layer.sub_cells() as usize;

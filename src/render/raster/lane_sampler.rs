@@ -230,12 +230,10 @@ mod tests {
 
     /// A `width × height` texture whose level 0 holds sRGB bytes from `seed`, with its chain.
     fn texture(width: u32, height: u32, seed: u32) -> Texture {
-        let mut state = seed;
+        let mut draw = crate::test_draws::draws(seed.into());
+        // Three bytes of colour and a fourth of zero.
         let texels = (0..width * height)
-            .map(|_| {
-                state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-                (state >> 8).to_le_bytes()
-            })
+            .map(|_| ((draw() >> 7) as u32).to_le_bytes())
             .collect();
         let base = MipLevel {
             width,

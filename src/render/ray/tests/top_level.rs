@@ -25,13 +25,11 @@ use crate::world::World;
 const OBJECTS: usize = 300;
 
 /// A scene of [`OBJECTS`] boxes and icosahedra at pseudo-random places in a cube of side 8
-/// (a fixed linear congruential sequence), every seventh an exact copy of the one before.
+/// (a fixed pseudo-random sequence, `test_draws`), every seventh an exact copy of the one before.
 fn many_objects_toml() -> String {
-    let mut state = 0x2545_f491_u32;
-    let mut next = move || {
-        state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
-        (state >> 8) as f32 / (1 << 24) as f32
-    };
+    let mut draw = crate::test_draws::draws(0x2545_f491);
+    // 24 bits: exact in `f32`, below 1.
+    let mut next = move || (draw() >> 7) as f32 / (1 << 24) as f32;
     let mut toml = String::from("[camera]\nposition = [0.0, 0.0, 9.0]\ntarget = [0.0, 0.0, 0.0]\n");
     let mut last = String::new();
     for i in 0..OBJECTS {
