@@ -70,13 +70,13 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
             Some(model) => {
                 // The file's centre, which instances are placed about: a pass over its
                 // vertices, taken only for a file that has instances.
-                let centre = std::cell::OnceCell::new();
-                let centre = || {
-                    *centre.get_or_init(|| {
+                let has_instances = file_parts.iter().any(|p| !p.instances.is_empty());
+                let centre = has_instances
+                    .then(|| {
                         let (lo, hi) = model.bounds();
                         (lo + hi) * 0.5
                     })
-                };
+                    .unwrap_or(Vec3::ZERO);
                 let mut built = parts.iter().map(|(b, _)| &b.mesh);
                 file_parts
                     .iter()
@@ -94,7 +94,7 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
                             .iter()
                             .map(|instance| {
                                 let to_world =
-                                    instance_transform(object, centre(), instance.transform);
+                                    instance_transform(object, centre, instance.transform);
                                 let moved = p.geometry.positions.iter();
                                 let moved = moved.map(|&q| to_world.transform_point3(q)).collect();
                                 (Cow::Owned(moved), triangles)

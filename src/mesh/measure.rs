@@ -541,13 +541,13 @@ mod tests {
             .values()
             .filter(|&&u| u == (2, 0) || u == (0, 2))
             .count();
+        let three_or_more = uses.values().filter(|(f, b)| f + b > 2).count();
         for threads in [1, 3, 8] {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
                 .unwrap();
             let edges = pool.install(|| edge_counts(&triangles, vertices));
-            let three_or_more = uses.values().filter(|(f, b)| f + b > 2).count();
             assert_eq!(edges.boundary, count(1), "{threads} threads");
             assert_eq!(edges.non_manifold, three_or_more, "{threads} threads");
             assert_eq!(edges.misoriented, misoriented, "{threads} threads");

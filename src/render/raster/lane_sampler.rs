@@ -139,8 +139,9 @@ fn read_level<L: Lanes8>(
 
 /// [`neighbours`] in lanes, for whole-number texel coordinates `texel` within ±2^22 in a row of
 /// `size` texels: the indices (whole numbers in 0..size) that `texel` and `texel + 1` read, the
-/// first of them what the one-point sampler's `wrapped_fast` gives. Repeat and clamp-to-edge are worked out in lanes, every
-/// step exact on whole numbers below 2^24; mirrored repeat lane by lane.
+/// first of them what the one-point sampler's `wrapped_fast` gives. Repeat and clamp-to-edge
+/// are worked out in lanes, every step exact on whole numbers below 2^24; mirrored repeat lane
+/// by lane.
 #[inline(always)]
 fn lane_neighbours<L: Lanes8>(texel: L, size: u32, wrap: Wrap) -> (L, L) {
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
