@@ -70,13 +70,12 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
             Some(model) => {
                 // The file's centre, which instances are placed about: a pass over its
                 // vertices, taken only for a file that has instances.
-                let has_instances = file_parts.iter().any(|p| !p.instances.is_empty());
-                let centre = has_instances
-                    .then(|| {
-                        let (lo, hi) = model.bounds();
-                        (lo + hi) * 0.5
-                    })
-                    .unwrap_or(Vec3::ZERO);
+                let centre = if file_parts.iter().any(|p| !p.instances.is_empty()) {
+                    let (lo, hi) = model.bounds();
+                    (lo + hi) * 0.5
+                } else {
+                    Vec3::ZERO
+                };
                 let mut built = parts.iter().map(|(b, _)| &b.mesh);
                 file_parts
                     .iter()
