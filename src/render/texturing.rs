@@ -18,7 +18,7 @@ use glam::{Vec2, Vec3, Vec4};
 use crate::mesh::Mesh;
 use crate::mesh::texture::{AlphaMode, TextureBinding};
 use crate::render::camera::View;
-use crate::render::simd::{Lanes, log2};
+use crate::render::simd::{Lanes, coarse_log2};
 use crate::world::{World, WorldObject};
 
 /// Steepest incidence the footprint is widened for: at grazing angles beyond it (cosine below
@@ -225,7 +225,7 @@ impl<'a> ObjectTextures<'a> {
         let width = L::splat(self.base) + L::splat(self.spread) * distance;
         let slant = cos.max(-cos).max(L::splat(MIN_COSINE));
         let covered = texels * density * width * width / slant;
-        L::splat(0.5) * log2(covered)
+        L::splat(0.5) * coarse_log2(covered)
     }
 
     /// [`ObjectTextures::sample`] of `binding`.

@@ -1,10 +1,12 @@
 //! Arithmetic on eight f32 lanes at a time, written once for one lane or eight: the lane types
-//! (`lanes`), 3-vectors of lanes (`lane_vec`), and `pow` for the specular highlight.
+//! (`lanes`), 3-vectors of lanes (`lane_vec`), `pow` for the specular highlight and a coarse
+//! `log2` for the texture level of detail.
 
 #[cfg(target_arch = "x86_64")]
 mod avx;
 #[cfg(target_arch = "x86_64")]
 mod avx512;
+mod coarse_log2;
 mod lane_vec;
 mod lanes;
 mod pow;
@@ -22,4 +24,5 @@ pub(crate) use avx::run_on_best_lanes;
 pub(crate) fn run_on_best_lanes<J: LanesJob>(job: J) -> J::Output {
     job.run::<F32x8>()
 }
-pub(crate) use pow::{log2, pow};
+pub(crate) use coarse_log2::coarse_log2;
+pub(crate) use pow::pow;
