@@ -138,8 +138,8 @@ pub struct Estimate {
     pub instances: u64,
     /// Triangles the instances place in the world (each instance its shared mesh's).
     pub placed_triangles: u64,
-    /// Bytes of decoded textures: 4 a texel of an image's own sRGB bytes, 8 a texel of 16-bit
-    /// linear levels (its mip chain, a third as many texels, and a halved image's base).
+    /// Bytes of decoded textures: 8 a texel (16-bit linear RGBA) of each image's base level and
+    /// of its mip chain (a third as many texels).
     pub texture_bytes: u64,
     /// Bytes of the frames being rendered and written.
     pub frame_bytes: u64,

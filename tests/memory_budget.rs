@@ -261,9 +261,9 @@ fn a_world_or_a_frame_past_the_bound_is_refused_naming_the_file() {
 #[test]
 fn textures_are_counted_from_their_headers_before_any_past_the_bound_is_decoded() {
     let dir = tempfile::tempdir().unwrap();
-    // Eight materials, each with its own 2048×2048 texture (28 MB decoded with its mip chain:
-    // the image's sRGB bytes and 16-bit levels below), on eight quads: 224 MB of textures
-    // against a bound of 200 MB, of which the program's 120 MB leaves room for two.
+    // Eight materials, each with its own 2048×2048 texture (45 MB decoded with its mip chain,
+    // 16-bit texels), on eight quads: 358 MB of textures against a bound of 200 MB, of which the
+    // program's 120 MB leaves room for one.
     let mut obj = String::from("mtllib many.mtl\nvt 0 0\nvt 1 0\nvt 1 1\n");
     let mut mtl = String::new();
     for m in 0..8 {
@@ -282,7 +282,7 @@ fn textures_are_counted_from_their_headers_before_any_past_the_bound_is_decoded(
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(2), "{stderr}");
     assert!(
-        stderr.contains("many.obj: 8 triangles in 8 objects, 0.08 GB of textures")
+        stderr.contains("many.obj: 8 triangles in 8 objects, 0.09 GB of textures")
             && stderr.contains("bound is 0.20 GB"),
         "{stderr}"
     );

@@ -1,6 +1,6 @@
 //! PNG or JPEG bytes to a [`Texture`]: the header's size checked first and committed to the
-//! model's memory account, then the image decoded, turned from sRGB to linear (halved on the way
-//! when it is larger than the base level may be) and given its mip chain.
+//! model's memory account, then the image decoded, turned from sRGB to 16-bit linear (halved on
+//! the way when it is larger than the base level may be) and given its mip chain.
 
 use std::io::Cursor;
 
@@ -10,16 +10,16 @@ use super::error::TextureError;
 use super::ledger::TextureLedger;
 use super::limits::{MAX_TEXTURE_BASE_TEXELS, MAX_TEXTURE_DECLARED_TEXELS, MAX_TEXTURE_SIDE};
 use super::mip_chain::{halved, halved_with, mip_chain};
-use super::texels::{SrgbTable, Texels};
 use super::texture::{MipLevel, Texture};
+use crate::mesh::srgb::srgb_byte_table;
 
 /// Decodes `bytes`, a PNG or JPEG image, into a texture named `name`, once the size its header
 /// declares is committed to `ledger`, the model's account. The colour channels are sRGB-encoded
 /// and become linear; alpha is kept as it is.
 ///
 /// Memory while decoding: the 8-bit image (4 bytes a declared texel, at most 268 MB) beside the
-/// base level (its copy, or 8 bytes a texel of at most [`MAX_TEXTURE_BASE_TEXELS`] when halved,
-/// 134 MB); the linear image at full size is never held when it is halved.
+/// base level (8 bytes a texel of at most [`MAX_TEXTURE_BASE_TEXELS`], 134 MB); the linear
+/// image at full size is never held when it is halved.
 pub fn decode_texture(
     bytes: &[u8],
     name: &str,
@@ -75,35 +75,43 @@ pub fn decode_texture(
         reason: e.to_string(),
     })?;
     let rgba = image.into_rgba8();
-    let base = base_level(&rgba, MAX_TEXTURE_BASE_TEXELS);
+    let levels = levels(&rgba, MAX_TEXTURE_BASE_TEXELS);
     drop(rgba);
     Ok(Texture {
         name: name.to_string(),
         file_size: (width, height),
-        levels: mip_chain(base),
+        levels,
     })
 }
 
-/// `rgba`'s texels as the base level: the image's own sRGB bytes when it has at most
-/// `max_texels`, else the image halved in linear space until it does, where the first halving
-/// reads the 8-bit texels directly (the same sums as halving the decoded image, without holding
-/// it).
-fn base_level(rgba: &image::RgbaImage, max_texels: u64) -> MipLevel {
+/// `rgba`'s mip chain, finest first: the image decoded when it has at most `max_texels`, else
+/// the image halved in linear space until it does. The first halving reads the 8-bit texels
+/// and decodes them exactly (the same sums as halving the decoded image, without holding it
+/// whole, and without the rounding of the 16-bit level 0).
+fn levels(rgba: &image::RgbaImage, max_texels: u64) -> Vec<MipLevel> {
     let (width, height) = rgba.dimensions();
-    if u64::from(width) * u64::from(height) <= max_texels {
-        return MipLevel {
-            width,
-            height,
-            texels: Texels::Srgb8(rgba.pixels().map(|p| p.0).collect()),
-        };
+    let linear = |x, y| decode_texel(rgba.get_pixel(x, y).0);
+    if u64::from(width) * u64::from(height) > max_texels {
+        let mut base = halved_with(width, height, linear);
+        while u64::from(base.width) * u64::from(base.height) > max_texels {
+            base = halved(&base);
+        }
+        return mip_chain(base);
     }
-    let table = SrgbTable::get();
-    let linear = |x, y| table.decode(rgba.get_pixel(x, y).0).to_array();
-    let mut base = halved_with(width, height, linear);
-    while u64::from(base.width) * u64::from(base.height) > max_texels {
-        base = halved(&base);
+    let image = MipLevel::linear(width, height, rgba.pixels().map(|p| decode_texel(p.0)));
+    if width == 1 && height == 1 {
+        return vec![image];
     }
-    base
+    let mut levels = vec![image];
+    levels.extend(mip_chain(halved_with(width, height, linear)));
+    levels
+}
+
+/// The linear RGBA of an 8-bit texel: its colour sRGB-decoded, its alpha code / 255.
+fn decode_texel([r, g, b, a]: [u8; 4]) -> [f32; 4] {
+    let srgb = srgb_byte_table();
+    let [r, g, b] = [r, g, b].map(|c| srgb[usize::from(c)]);
+    [r, g, b, f32::from(a) / 255.0]
 }
 
 #[cfg(test)]
@@ -133,10 +141,12 @@ mod tests {
         assert_eq!(ledger.committed(), texture.memory_bytes() as u64);
         assert_eq!(texture.size(), (4, 2));
         assert_eq!(texture.levels.len(), 3);
-        let texel = texture.levels[0].texel(3, 1);
-        assert_eq!(texel, [1.0, srgb_byte_to_linear(128), 0.0, 1.0]);
-        // The image's own bytes, and 16-bit levels below.
-        assert_eq!(texture.memory_bytes(), 8 * 4 + 3 * 8);
+        let [r, g, b, a] = texture.levels[0].texel(3, 1);
+        assert_eq!([r, b, a], [1.0, 0.0, 1.0]);
+        // Within half a 16-bit step of the exact decode.
+        assert!((g - srgb_byte_to_linear(128)).abs() <= 0.5 / 65535.0, "{g}");
+        // 16-bit texels: 4×2, 2×1 and 1×1.
+        assert_eq!(texture.memory_bytes(), 8 * (8 + 2 + 1));
         assert!(!texture.has_alpha());
     }
 
@@ -180,7 +190,7 @@ mod tests {
     }
 
     #[test]
-    fn halving_while_converting_gives_the_bits_of_converting_then_halving() {
+    fn every_level_comes_from_the_exact_decode() {
         let image = image::RgbaImage::from_fn(7, 5, |x, y| {
             image::Rgba([
                 (x * 37 + y * 11) as u8,
@@ -189,19 +199,21 @@ mod tests {
                 200,
             ])
         });
-        let full = base_level(&image, u64::MAX);
-        assert_eq!((full.width, full.height), (7, 5));
-        for max_texels in [35, 34, 6, 2, 1] {
-            let mut expected = full.clone();
+        let exact = |x, y| decode_texel(image.get_pixel(x, y).0);
+        let decoded = image.pixels().map(|p| decode_texel(p.0));
+        let whole = levels(&image, u64::MAX);
+        assert_eq!(whole[0], MipLevel::linear(7, 5, decoded));
+        // Level 1 halves the exact decode, not the rounded level 0.
+        let mut expected = halved_with(7, 5, exact);
+        assert_eq!(whole[1], expected);
+        assert_eq!(whole.len(), 3, "7×5, 3×2, 1×1");
+        // An image past the limit: halved while it is decoded, with the same sums.
+        for max_texels in [34, 6, 2, 1] {
             while u64::from(expected.width) * u64::from(expected.height) > max_texels {
                 expected = halved(&expected);
             }
-            let fused = base_level(&image, max_texels);
-            assert_eq!(
-                (fused.width, fused.height),
-                (expected.width, expected.height)
-            );
-            assert_eq!(fused.texels, expected.texels, "max {max_texels}");
+            let fused = levels(&image, max_texels);
+            assert_eq!(fused[0], expected, "max {max_texels}");
         }
     }
 }

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use super::limits::MAX_TEXTURE_BASE_TEXELS;
-use super::texels::{LINEAR16_TEXEL_BYTES, SRGB8_TEXEL_BYTES};
+use super::texels::TEXEL_BYTES;
 use crate::memory_budget::{Estimate, OverBudget};
 
 /// The running account of one model load. Clones share one account.
@@ -93,23 +93,21 @@ impl TextureLedger {
     }
 }
 
-/// Bytes a texture declared `width × height` takes once decoded: its base level (the image's
-/// own sRGB bytes, 4 a texel, or, when it has more than [`MAX_TEXTURE_BASE_TEXELS`], the image
-/// halved until it fits, at 8 bytes a texel) and every level below, at 8 bytes (16-bit linear
-/// RGBA) a texel. Equal to [`super::Texture::memory_bytes`] of the decoded texture.
+/// Bytes a texture declared `width × height` takes once decoded: its base level (the image, or,
+/// when it has more than [`MAX_TEXTURE_BASE_TEXELS`], the image halved until it fits) and every
+/// level below, at 8 bytes (16-bit linear RGBA) a texel. Equal to
+/// [`super::Texture::memory_bytes`] of the decoded texture.
 pub fn decoded_texture_bytes(width: u32, height: u32) -> u64 {
     let (mut w, mut h) = (u64::from(width.max(1)), u64::from(height.max(1)));
-    let mut base_bytes = SRGB8_TEXEL_BYTES;
     while w * h > MAX_TEXTURE_BASE_TEXELS {
         (w, h) = ((w / 2).max(1), (h / 2).max(1));
-        base_bytes = LINEAR16_TEXEL_BYTES;
     }
-    let mut bytes = w * h * base_bytes;
+    let mut texels = w * h;
     while w > 1 || h > 1 {
         (w, h) = ((w / 2).max(1), (h / 2).max(1));
-        bytes += w * h * LINEAR16_TEXEL_BYTES;
+        texels += w * h;
     }
-    bytes
+    texels * TEXEL_BYTES
 }
 
 #[cfg(test)]
@@ -119,16 +117,16 @@ mod tests {
 
     #[test]
     fn the_declared_size_gives_a_chain_of_halvings_down_to_one_texel() {
-        // 4×2 at 4 bytes, then 2×1 and 1×1 at 8.
-        assert_eq!(decoded_texture_bytes(4, 2), 8 * 4 + 3 * 8);
+        // 4×2, then 2×1 and 1×1, at 8 bytes a texel.
+        assert_eq!(decoded_texture_bytes(4, 2), 8 * (8 + 2 + 1));
         // 5×3, 2×1, 1×1: an odd side rounds down.
-        assert_eq!(decoded_texture_bytes(5, 3), 15 * 4 + 3 * 8);
-        // 8192² is halved once to a 4096² base of 16-bit texels before its chain.
-        let chain_below = decoded_texture_bytes(4096, 4096) - 4 * 4096 * 4096;
+        assert_eq!(decoded_texture_bytes(5, 3), 8 * (15 + 2 + 1));
+        // 8192² is halved once to a 4096² base before its chain.
         assert_eq!(
             decoded_texture_bytes(8192, 8192),
-            8 * 4096 * 4096 + chain_below
+            decoded_texture_bytes(4096, 4096)
         );
+        let chain_below = decoded_texture_bytes(4096, 4096) - 8 * 4096 * 4096;
         // The chain below takes a third of the base's texels, at 8 bytes.
         assert_eq!(chain_below / 8, (4096 * 4096 - 1) / 3);
     }

@@ -9,7 +9,6 @@ pub const MAX_TEXTURE_SIDE: u32 = 16_384;
 pub const MAX_TEXTURE_DECLARED_TEXELS: u64 = 1 << 26;
 
 /// Most texels the finest level keeps (4096×4096): a larger image is halved until it fits.
-/// A halved image's base holds 8 bytes a texel (16-bit linear RGBA) and its mip chain a third
-/// more, so a texture takes at most about 179 MB (an image kept whole: 4 bytes a texel of its
-/// own, about 112 MB).
+/// The base holds 8 bytes a texel (16-bit linear RGBA) and its mip chain a third more, so a
+/// texture takes at most about 179 MB.
 pub const MAX_TEXTURE_BASE_TEXELS: u64 = 1 << 24;

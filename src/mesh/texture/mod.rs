@@ -1,6 +1,6 @@
 //! Colour textures of model files: a PNG or JPEG read through the model's folder, read as linear
 //! (decoded from sRGB) with its mip chain (`texture`, `decode`, `mip_chain`, `load`), its texels
-//! held compactly (`texels`: the image's sRGB bytes, 16-bit linear for the levels below), its
+//! held compactly (`texels`: 16-bit linear RGBA), its
 //! memory committed from its header before decoding (`ledger`), sampled with wrap modes and
 //! trilinear filtering (`sampler`), and what a model part carries of them (`appearance`).
 
@@ -28,6 +28,6 @@ pub(crate) use mip_chain::mip_chain;
 pub(crate) use sampler::neighbours;
 pub use sampler::{Filter, MipFilter, Sampler, Wrap};
 pub use texels::Texels;
-pub(crate) use texels::{SrgbTable, U16_STEP};
+pub(crate) use texels::U16_STEP;
 pub use texture::{MipLevel, Texture};
 pub use uv_transform::UvTransform;

@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec4};
 
-use super::texels::{SrgbTable, Texels, from_u16};
+use super::texels::from_u16;
 use super::texture::{MipLevel, Texture};
 
 /// What a coordinate outside [0, 1] reads (glTF's and OpenGL's three modes).
@@ -92,15 +92,8 @@ impl Sampler {
     /// `level` at `uv` with `filter`.
     #[inline(always)]
     fn read_level(&self, level: &MipLevel, uv: Vec2, filter: Filter) -> Vec4 {
-        match &level.texels {
-            Texels::Srgb8(texels) => {
-                let table = SrgbTable::get();
-                self.filter_level(level, uv, filter, |i| table.decode(texels[i]))
-            }
-            Texels::Linear16(texels) => {
-                self.filter_level(level, uv, filter, |i| from_u16(texels[i]))
-            }
-        }
+        let texels = level.texels.codes();
+        self.filter_level(level, uv, filter, |i| from_u16(texels[i]))
     }
 
     /// `level` at `uv` with `filter`, texel `i` (row-major) reading as `texel(i)`.

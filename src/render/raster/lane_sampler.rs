@@ -9,7 +9,7 @@
 //! at the edges between levels.
 
 use crate::mesh::texture::{
-    Filter, MipFilter, MipLevel, Sampler, SrgbTable, Texels, Texture, U16_STEP, Wrap, neighbours,
+    Filter, MipFilter, MipLevel, Sampler, Texture, U16_STEP, Wrap, neighbours,
 };
 use crate::render::simd::{Lanes, Lanes8, ROUND_MAGIC, V3, WIDTH};
 
@@ -171,26 +171,14 @@ fn lane_neighbours<L: Lanes8>(texel: L, size: u32, wrap: Wrap) -> (L, L) {
 /// The RGB of the texels at `index` of `level`, linear, lane k texel `index[k]`.
 #[inline(always)]
 fn texels<L: Lanes8>(level: &MipLevel, index: &[u32; WIDTH]) -> V3<L> {
-    let (mut r, mut g, mut b) = ([0.0; WIDTH], [0.0; WIDTH], [0.0; WIDTH]);
-    match &level.texels {
-        Texels::Srgb8(texels) => {
-            let table = SrgbTable::get();
-            for k in 0..WIDTH {
-                let [tr, tg, tb, _] = texels[index[k] as usize];
-                (r[k], g[k], b[k]) = (table.color(tr), table.color(tg), table.color(tb));
-            }
-            V3::new(L::from_array(r), L::from_array(g), L::from_array(b))
-        }
-        Texels::Linear16(texels) => {
-            for k in 0..WIDTH {
-                let [tr, tg, tb, _] = texels[index[k] as usize];
-                (r[k], g[k], b[k]) = (f32::from(tr), f32::from(tg), f32::from(tb));
-            }
-            // As `from_u16`: the codes times one step.
-            let rgb = V3::new(L::from_array(r), L::from_array(g), L::from_array(b));
-            rgb * L::splat(U16_STEP)
-        }
+    let codes = level.texels.codes();
+    let mut eight = [[0; 4]; WIDTH];
+    for k in 0..WIDTH {
+        eight[k] = codes[index[k] as usize];
     }
+    let [r, g, b] = L::rgb16(&eight);
+    // As `from_u16`: the codes times one step.
+    V3::new(r, g, b) * L::splat(U16_STEP)
 }
 
 /// [`floor`] of `x`, or `None` where some lane is beyond ±[`LARGEST_SMALL`] (or infinite).
@@ -229,22 +217,18 @@ mod tests {
     use crate::mesh::texture::{MipLevel, mip_chain};
     use crate::render::simd::{F32x8, LanesJob, run_on_best_lanes};
 
-    /// A `width × height` texture whose level 0 holds sRGB bytes from `seed`, with its chain.
+    /// A `width × height` texture whose level 0 holds linear colours from `seed` (alpha 0),
+    /// with its chain.
     fn texture(width: u32, height: u32, seed: u32) -> Texture {
         let mut draw = crate::test_draws::draws(seed.into());
-        // Three bytes of colour and a fourth of zero.
-        let texels = (0..width * height)
-            .map(|_| ((draw() >> 7) as u32).to_le_bytes())
+        let mut channel = || (draw() >> 40) as f32 / (1u64 << 24) as f32;
+        let texels: Vec<[f32; 4]> = (0..width * height)
+            .map(|_| [channel(), channel(), channel(), 0.0])
             .collect();
-        let base = MipLevel {
-            width,
-            height,
-            texels: Texels::Srgb8(texels),
-        };
         Texture {
             name: "noise".into(),
             file_size: (width, height),
-            levels: mip_chain(base),
+            levels: mip_chain(MipLevel::linear(width, height, texels)),
         }
     }
 

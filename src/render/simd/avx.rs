@@ -11,10 +11,11 @@
 
 use std::arch::x86_64::{
     __m256, _CMP_GT_OQ, _CMP_LT_OQ, _mm256_add_epi32, _mm256_add_ps, _mm256_and_ps,
-    _mm256_blendv_ps, _mm256_castps_si256, _mm256_castsi256_ps, _mm256_cmp_ps, _mm256_cvtepi32_ps,
-    _mm256_cvttps_epi32, _mm256_div_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps,
-    _mm256_mul_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_setzero_ps, _mm256_slli_epi32,
-    _mm256_sqrt_ps, _mm256_srai_epi32, _mm256_sub_epi32, _mm256_sub_ps, _mm256_xor_ps,
+    _mm256_and_si256, _mm256_blendv_ps, _mm256_castps_si256, _mm256_castsi256_ps, _mm256_cmp_ps,
+    _mm256_cvtepi32_ps, _mm256_cvttps_epi32, _mm256_div_ps, _mm256_max_ps, _mm256_min_ps,
+    _mm256_movemask_ps, _mm256_mul_ps, _mm256_set_epi64x, _mm256_set1_epi32, _mm256_set1_ps,
+    _mm256_setzero_ps, _mm256_shuffle_ps, _mm256_slli_epi32, _mm256_sqrt_ps, _mm256_srai_epi32,
+    _mm256_srli_epi32, _mm256_sub_epi32, _mm256_sub_ps, _mm256_xor_ps,
 };
 use std::ops::{Add, BitAnd, Div, Mul, Neg, Sub};
 
@@ -169,6 +170,27 @@ where
         bytemuck::cast(unsafe { _mm256_cvttps_epi32(self.0) })
     }
 
+    #[inline(always)]
+    fn rgb16(texels: &[[u16; 4]; WIDTH]) -> [Self; 3] {
+        // A texel is one 64-bit word, red in its low 16 bits. The shuffles below take the low
+        // (red and green) or high (blue and alpha) half of words 0 and 1 of `a`, then of `b`,
+        // in each 128-bit half: so `a` holds texels 0, 1, 4, 5 and `b` texels 2, 3, 6, 7.
+        let t: [i64; WIDTH] = bytemuck::cast(*texels);
+        // SAFETY: as in `avx!`.
+        unsafe {
+            let a = _mm256_castsi256_ps(_mm256_set_epi64x(t[5], t[4], t[1], t[0]));
+            let b = _mm256_castsi256_ps(_mm256_set_epi64x(t[7], t[6], t[3], t[2]));
+            let red_green = _mm256_castps_si256(_mm256_shuffle_ps::<0b10_00_10_00>(a, b));
+            let blue_alpha = _mm256_castps_si256(_mm256_shuffle_ps::<0b11_01_11_01>(a, b));
+            let low = _mm256_set1_epi32(0xffff);
+            [
+                Avx(_mm256_cvtepi32_ps(_mm256_and_si256(red_green, low))),
+                Avx(_mm256_cvtepi32_ps(_mm256_srli_epi32::<16>(red_green))),
+                Avx(_mm256_cvtepi32_ps(_mm256_and_si256(blue_alpha, low))),
+            ]
+        }
+    }
+
     type Pair = <Self as Pairs>::Pair;
 
     #[inline(always)]
@@ -266,7 +288,7 @@ fn on_avx512<J: LanesJob>(job: J) -> J::Output {
 #[cfg(test)]
 mod tests {
     use super::{F32x8, Lanes, Lanes8, LanesJob, WIDTH, run_on_best_lanes};
-    use crate::render::simd::pow;
+    use crate::render::simd::{coarse_log2, pow};
 
     /// Sixteen lanes' values.
     type Sixteen = [f32; 2 * WIDTH];
@@ -335,7 +357,44 @@ mod tests {
             bits(m),
             bits(x.scale_by_pow2(exponent)),
             bits(pow(unit, shininess)),
+            bits(coarse_log2(positive)),
         ]
+    }
+
+    /// The red, green and blue of eight texels as [`Lanes8::rgb16`] unpacks them, lane by lane,
+    /// and the name of the lanes they ran on.
+    struct Unpack([[u16; 4]; WIDTH]);
+
+    impl LanesJob for Unpack {
+        type Output = (&'static str, [[f32; WIDTH]; 3]);
+
+        fn run<L: Lanes8>(self) -> Self::Output {
+            let [r, g, b] = L::rgb16(&self.0);
+            let name = std::any::type_name::<L>();
+            (name, [r.to_array(), g.to_array(), b.to_array()])
+        }
+    }
+
+    #[test]
+    fn each_lane_unpacks_its_own_texel() {
+        let mut draw = crate::test_draws::draws(7);
+        for round in 0..500 {
+            let mut texels: [[u16; 4]; WIDTH] =
+                std::array::from_fn(|_| std::array::from_fn(|_| (draw() >> 32) as u16));
+            if round == 0 {
+                // The ends of the range, and alpha that must not leak into blue.
+                texels[0] = [0, u16::MAX, 0, u16::MAX];
+                texels[7] = [u16::MAX, 0, u16::MAX, 0];
+            }
+            let (lanes, got) = run_on_best_lanes(Unpack(texels));
+            if crate::render::cpu::has_avx2_bmi() {
+                assert!(lanes.contains("Avx"), "ran on {lanes}");
+            }
+            let want: [[f32; WIDTH]; 3] =
+                std::array::from_fn(|c| std::array::from_fn(|k| f32::from(texels[k][c])));
+            assert_eq!(got, want, "{texels:?}");
+            assert_eq!(Unpack(texels).run::<F32x8>().1, want, "{texels:?}");
+        }
     }
 
     #[test]

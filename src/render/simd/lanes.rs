@@ -215,6 +215,18 @@ pub trait Lanes8: Lanes {
     /// The lanes as integers, for lanes that hold whole numbers in [0, 2^24] (where `f32` is
     /// exact): the conversion in one instruction, not one a lane.
     fn to_whole_u32(self) -> [u32; WIDTH];
+    /// The red, green and blue codes of eight 16-bit RGBA texels as whole numbers, lane k
+    /// texel k: the eight unpacked together, not three conversions a lane.
+    #[inline(always)]
+    fn rgb16(texels: &[[u16; 4]; WIDTH]) -> [Self; 3] {
+        std::array::from_fn(|c| {
+            let mut codes = [0.0; WIDTH];
+            for (code, texel) in codes.iter_mut().zip(texels) {
+                *code = f32::from(texel[c]);
+            }
+            Self::from_array(codes)
+        })
+    }
 
     /// Sixteen lanes: two batches of eight worked on at once. One AVX-512 register where the
     /// CPU has it, else the two halves side by side ([`Twice`]).
