@@ -299,8 +299,7 @@ impl<'a> PhongShader<'a> {
     /// density, the third).
     #[inline(always)]
     fn textured_albedo<L: Lanes8>(&self, fragments: &Fragments<L, 3>, color: V3<L>) -> V3<L> {
-        let tinted = color.mul_elements(fragments.varying[1]);
-        let color = self.colored.select(&fragments.object, tinted, color);
+        let color = self.albedo(fragments, color);
         self.times_texels(fragments, fragments.varying[2], color)
     }
 
@@ -319,9 +318,13 @@ impl<'a> PhongShader<'a> {
     }
 
     /// The albedo of `fragments` whose material colours are `color`: times the interpolated
-    /// vertex colour in the lanes whose object has colours.
+    /// vertex colour (the second varying) in the lanes whose object has colours.
     #[inline(always)]
-    fn albedo<L: Lanes8>(&self, fragments: &Fragments<L, 2>, color: V3<L>) -> V3<L> {
+    fn albedo<L: Lanes8, const K: usize>(
+        &self,
+        fragments: &Fragments<L, K>,
+        color: V3<L>,
+    ) -> V3<L> {
         let tinted = color.mul_elements(fragments.varying[1]);
         self.colored.select(&fragments.object, tinted, color)
     }
