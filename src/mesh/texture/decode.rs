@@ -18,8 +18,9 @@ use crate::mesh::srgb::srgb_byte_table;
 /// and become linear; alpha is kept as it is.
 ///
 /// Memory while decoding: the 8-bit image (4 bytes a declared texel, at most 268 MB) beside the
-/// base level (8 bytes a texel of at most [`MAX_TEXTURE_BASE_TEXELS`], 134 MB); the linear
-/// image at full size is never held when it is halved.
+/// base level (8 bytes a texel of at most [`MAX_TEXTURE_BASE_TEXELS`], 134 MB) and, for an image
+/// kept whole, its first halving (2 bytes a texel); the linear image at full size is never held
+/// when it is halved. The most is 402 MB, for an 8192×8192 image.
 pub fn decode_texture(
     bytes: &[u8],
     name: &str,
