@@ -20,7 +20,8 @@ use crate::mesh::srgb::srgb_byte_table;
 /// Memory while decoding: the 8-bit image (4 bytes a declared texel, at most 268 MB) beside the
 /// base level (8 bytes a texel of at most [`MAX_TEXTURE_BASE_TEXELS`], 134 MB) and, for an image
 /// kept whole, its first halving (2 bytes a texel); the linear image at full size is never held
-/// when it is halved. The most is 402 MB, for an 8192×8192 image.
+/// when it is halved, and the rest of the chain is made once the 8-bit image is gone. The most
+/// is 402 MB, for an 8192×8192 image.
 pub fn decode_texture(
     bytes: &[u8],
     name: &str,
@@ -76,20 +77,21 @@ pub fn decode_texture(
         reason: e.to_string(),
     })?;
     let rgba = image.into_rgba8();
-    let levels = levels(&rgba, MAX_TEXTURE_BASE_TEXELS);
+    let finest = finest_levels(&rgba, MAX_TEXTURE_BASE_TEXELS);
+    // The 8-bit image goes before the rest of the chain is made.
     drop(rgba);
     Ok(Texture {
         name: name.to_string(),
         file_size: (width, height),
-        levels,
+        levels: chain(finest),
     })
 }
 
-/// `rgba`'s mip chain, finest first: the image decoded when it has at most `max_texels`, else
-/// the image halved in linear space until it does. The first halving reads the 8-bit texels
-/// and decodes them exactly (the same sums as halving the decoded image, without holding it
-/// whole, and without the rounding of the 16-bit level 0).
-fn levels(rgba: &image::RgbaImage, max_texels: u64) -> Vec<MipLevel> {
+/// `rgba`'s finest level: the image decoded when it has at most `max_texels`, else the image
+/// halved in linear space until it does; and, for an image kept whole, its first halving. Each
+/// first halving reads the 8-bit texels and decodes them exactly (the same sums as halving the
+/// decoded image, without holding it whole, and without the rounding of the 16-bit level 0).
+fn finest_levels(rgba: &image::RgbaImage, max_texels: u64) -> (MipLevel, Option<MipLevel>) {
     let (width, height) = rgba.dimensions();
     let linear = |x, y| decode_texel(rgba.get_pixel(x, y).0);
     if u64::from(width) * u64::from(height) > max_texels {
@@ -97,15 +99,20 @@ fn levels(rgba: &image::RgbaImage, max_texels: u64) -> Vec<MipLevel> {
         while u64::from(base.width) * u64::from(base.height) > max_texels {
             base = halved(&base);
         }
-        return mip_chain(base);
+        return (base, None);
     }
     let image = MipLevel::linear(width, height, rgba.pixels().map(|p| decode_texel(p.0)));
-    if width == 1 && height == 1 {
-        return vec![image];
+    let next = (width > 1 || height > 1).then(|| halved_with(width, height, linear));
+    (image, next)
+}
+
+/// The whole mip chain from [`finest_levels`]: the finest level, then every halving of the
+/// next one (or of the finest, when there is no next).
+fn chain((finest, next): (MipLevel, Option<MipLevel>)) -> Vec<MipLevel> {
+    match next {
+        None => mip_chain(finest),
+        Some(next) => std::iter::once(finest).chain(mip_chain(next)).collect(),
     }
-    let mut levels = vec![image];
-    levels.extend(mip_chain(halved_with(width, height, linear)));
-    levels
 }
 
 /// The linear RGBA of an 8-bit texel: its colour sRGB-decoded, its alpha code / 255.
@@ -202,7 +209,7 @@ mod tests {
         });
         let exact = |x, y| decode_texel(image.get_pixel(x, y).0);
         let decoded = image.pixels().map(|p| decode_texel(p.0));
-        let whole = levels(&image, u64::MAX);
+        let whole = chain(finest_levels(&image, u64::MAX));
         assert_eq!(whole[0], MipLevel::linear(7, 5, decoded));
         // Level 1 halves the exact decode, not the rounded level 0.
         let mut expected = halved_with(7, 5, exact);
@@ -213,7 +220,7 @@ mod tests {
             while u64::from(expected.width) * u64::from(expected.height) > max_texels {
                 expected = halved(&expected);
             }
-            let fused = levels(&image, max_texels);
+            let fused = chain(finest_levels(&image, max_texels));
             assert_eq!(fused[0], expected, "max {max_texels}");
         }
     }
