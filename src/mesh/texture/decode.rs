@@ -93,7 +93,8 @@ pub fn decode_texture(
 /// decoded image, without holding it whole, and without the rounding of the 16-bit level 0).
 fn finest_levels(rgba: &image::RgbaImage, max_texels: u64) -> (MipLevel, Option<MipLevel>) {
     let (width, height) = rgba.dimensions();
-    let linear = |x, y| decode_texel(rgba.get_pixel(x, y).0);
+    let srgb = srgb_byte_table();
+    let linear = |x, y| decode_texel(srgb, rgba.get_pixel(x, y).0);
     if u64::from(width) * u64::from(height) > max_texels {
         let mut base = halved_with(width, height, linear);
         while u64::from(base.width) * u64::from(base.height) > max_texels {
@@ -101,7 +102,11 @@ fn finest_levels(rgba: &image::RgbaImage, max_texels: u64) -> (MipLevel, Option<
         }
         return (base, None);
     }
-    let image = MipLevel::linear(width, height, rgba.pixels().map(|p| decode_texel(p.0)));
+    let image = MipLevel::linear(
+        width,
+        height,
+        rgba.pixels().map(|p| decode_texel(srgb, p.0)),
+    );
     let next = (width > 1 || height > 1).then(|| halved_with(width, height, linear));
     (image, next)
 }
@@ -115,9 +120,9 @@ fn chain((finest, next): (MipLevel, Option<MipLevel>)) -> Vec<MipLevel> {
     }
 }
 
-/// The linear RGBA of an 8-bit texel: its colour sRGB-decoded, its alpha code / 255.
-fn decode_texel([r, g, b, a]: [u8; 4]) -> [f32; 4] {
-    let srgb = srgb_byte_table();
+/// The linear RGBA of an 8-bit texel: its colour decoded through `srgb` (the sRGB decode's
+/// table), its alpha code / 255.
+fn decode_texel(srgb: &[f32; 256], [r, g, b, a]: [u8; 4]) -> [f32; 4] {
     let [r, g, b] = [r, g, b].map(|c| srgb[usize::from(c)]);
     [r, g, b, f32::from(a) / 255.0]
 }
@@ -207,8 +212,9 @@ mod tests {
                 200,
             ])
         });
-        let exact = |x, y| decode_texel(image.get_pixel(x, y).0);
-        let decoded = image.pixels().map(|p| decode_texel(p.0));
+        let srgb = srgb_byte_table();
+        let exact = |x, y| decode_texel(srgb, image.get_pixel(x, y).0);
+        let decoded = image.pixels().map(|p| decode_texel(srgb, p.0));
         let whole = chain(finest_levels(&image, u64::MAX));
         assert_eq!(whole[0], MipLevel::linear(7, 5, decoded));
         // Level 1 halves the exact decode, not the rounded level 0.

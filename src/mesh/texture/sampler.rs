@@ -92,19 +92,9 @@ impl Sampler {
     /// `level` at `uv` with `filter`.
     #[inline(always)]
     fn read_level(&self, level: &MipLevel, uv: Vec2, filter: Filter) -> Vec4 {
-        let texels = level.texels.codes();
-        self.filter_level(level, uv, filter, |i| from_u16(texels[i]))
-    }
-
-    /// `level` at `uv` with `filter`, texel `i` (row-major) reading as `texel(i)`.
-    #[inline(always)]
-    fn filter_level(
-        &self,
-        level: &MipLevel,
-        uv: Vec2,
-        filter: Filter,
-        texel: impl Fn(usize) -> Vec4,
-    ) -> Vec4 {
+        let codes = level.texels.codes();
+        // Texel `i`, row-major, as linear RGBA.
+        let texel = |i: usize| from_u16(codes[i]);
         let x = uv.x * level.width as f32;
         let y = uv.y * level.height as f32;
         match filter {
