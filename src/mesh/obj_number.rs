@@ -31,9 +31,46 @@ fn plain_decimal(bytes: &[u8]) -> Option<f32> {
 /// The plain decimal at `bytes[*at..]` (see [`plain_decimal`]), up to the first byte that is
 /// neither a digit nor its point, with `*at` moved past it: the value `parse_f32` gives the
 /// word when that byte ends it. `None` (`*at` anywhere) when it is no plain decimal.
+///
+/// Where eight bytes follow each part (as they do inside a file's text), its digits are read
+/// eight at a time ([`leading_digits`]); otherwise, or for a part of eight digits or more, one
+/// at a time.
 #[inline]
 pub fn decimal_at(bytes: &[u8], at: &mut usize) -> Option<f32> {
     let negative = sign_at(bytes, at);
+    let magnitude = match digits_in_place(bytes, *at) {
+        Some((whole, whole_len)) => {
+            let mut end = *at + whole_len;
+            let (fraction, fraction_len) = match bytes.get(end) {
+                Some(b'.') => {
+                    end += 1;
+                    let Some(part) = digits_in_place(bytes, end) else {
+                        return decimal_by_bytes(bytes, at, negative);
+                    };
+                    part
+                }
+                _ => (0, 0),
+            };
+            end += fraction_len;
+            // A second point makes no number; no digits at all neither.
+            if bytes.get(end) == Some(&b'.') || whole_len + fraction_len == 0 {
+                return None;
+            }
+            let mantissa = whole * POWERS[fraction_len] + fraction;
+            if mantissa > EXACT_INTEGERS {
+                return None;
+            }
+            *at = end;
+            mantissa as f32 / POWERS_OF_TEN[fraction_len]
+        }
+        None => return decimal_by_bytes(bytes, at, negative),
+    };
+    Some(if negative { -magnitude } else { magnitude })
+}
+
+/// [`decimal_at`] after its sign, one byte at a time.
+#[inline]
+fn decimal_by_bytes(bytes: &[u8], at: &mut usize, negative: bool) -> Option<f32> {
     let (mut mantissa, mut count, mut point) = (0u64, 0usize, None);
     while let Some(&b) = bytes.get(*at) {
         match b {
@@ -54,6 +91,41 @@ pub fn decimal_at(bytes: &[u8], at: &mut usize) -> Option<f32> {
     }
     let magnitude = mantissa as f32 / POWERS_OF_TEN[fraction];
     Some(if negative { -magnitude } else { magnitude })
+}
+
+/// `10ᵏ` for k = 0..=7, as integers.
+const POWERS: [u64; 8] = [1, 10, 100, 1_000, 10_000, 100_000, 1_000_000, 10_000_000];
+
+/// The digits at `bytes[at..]` read eight bytes at a time: their value and how many (0 to 7).
+/// `None` when fewer than eight bytes follow or the eight are all digits.
+#[inline]
+fn digits_in_place(bytes: &[u8], at: usize) -> Option<(u64, usize)> {
+    let chunk: [u8; 8] = bytes.get(at..at + 8)?.try_into().ok()?;
+    let (value, len) = leading_digits(chunk);
+    (len < 8).then_some((value, len))
+}
+
+/// The leading decimal digits of `chunk`: their value and how many (0 to 8; the value is 0
+/// when there are 8, which the caller reads otherwise). Eight bytes are read as one
+/// little-endian word, the first byte lowest, so that no loop stops at a length it did not
+/// foresee: subtracting `'0'` from every byte leaves a digit as 0 to 9 and sets the top bit of
+/// the first byte that is no digit (a byte below `'0'` wraps; one above `'9'` passes 127 when
+/// 118 is added). A borrow or carry from it runs only into later bytes, which are dropped.
+/// The digits are then moved to the top of the word (zeros before them) and joined pairwise:
+/// pairs, fours, then eight.
+#[inline]
+pub fn leading_digits(chunk: [u8; 8]) -> (u64, usize) {
+    let digits = u64::from_le_bytes(chunk).wrapping_sub(0x3030_3030_3030_3030);
+    let no_digit = (digits.wrapping_add(0x7676_7676_7676_7676) | digits) & 0x8080_8080_8080_8080;
+    let len = (no_digit.trailing_zeros() / 8) as usize;
+    if len == 0 || len == 8 {
+        return (0, len);
+    }
+    let v = digits << (64 - 8 * len);
+    let v = (v.wrapping_mul(10).wrapping_add(v >> 8)) & 0x00FF_00FF_00FF_00FF;
+    let v = (v.wrapping_mul(100).wrapping_add(v >> 16)) & 0x0000_FFFF_0000_FFFF;
+    let v = (v.wrapping_mul(10_000).wrapping_add(v >> 32)) & 0xFFFF_FFFF;
+    (v, len)
 }
 
 /// An index as written, as `word.parse::<i64>().ok()` reads it: an optional sign and decimal
@@ -79,10 +151,19 @@ fn sign_at(bytes: &[u8], at: &mut usize) -> bool {
 }
 
 /// The index at `bytes[*at..]`, an optional sign and 1 to 18 digits (which cannot overflow),
-/// with `*at` moved past it; `None` where there are no digits or more than 18.
+/// with `*at` moved past it; `None` where there are no digits or more than 18. Digits are read
+/// eight at a time where eight bytes follow (see [`leading_digits`]).
 #[inline]
 pub fn index_at(bytes: &[u8], at: &mut usize) -> Option<i64> {
     let negative = sign_at(bytes, at);
+    if let Some((value, len)) = digits_in_place(bytes, *at) {
+        if len == 0 {
+            return None;
+        }
+        *at += len;
+        let value = value as i64;
+        return Some(if negative { -value } else { value });
+    }
     let start = *at;
     let mut value = 0i64;
     while let Some(&b) = bytes.get(*at).filter(|b| b.is_ascii_digit()) {
@@ -101,6 +182,7 @@ pub fn index_at(bytes: &[u8], at: &mut usize) -> Option<i64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_draws::draws;
 
     fn same_as_std(word: &str) {
         let std = word.parse::<f32>().ok().map(f32::to_bits);
@@ -155,55 +237,136 @@ mod tests {
         }
     }
 
+    /// A decimal word of 1 to `most` digits drawn from `next`: maybe signed, maybe with a
+    /// point among its digits or after them.
+    fn decimal_word(next: &mut impl FnMut() -> u64, most: u64) -> String {
+        let r = next();
+        let digits = (r % most) as usize + 1;
+        let point = (r >> 8) as usize % (digits + 1);
+        let mut word = String::new();
+        if r >> 16 & 1 == 1 {
+            word.push('-');
+        }
+        for k in 0..digits {
+            if k == point && r >> 17 & 1 == 1 {
+                word.push('.');
+            }
+            word.push((b'0' + (next() % 10) as u8) as char);
+        }
+        if r >> 18 & 7 == 0 {
+            word.push('.');
+        }
+        word
+    }
+
     #[test]
     fn random_decimals_read_as_str_parse_reads_them() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut next = draws(11);
         for _ in 0..200_000 {
-            let r = next();
-            let digits = (r % 20) as usize + 1;
-            let point = (r >> 8) as usize % (digits + 1);
-            let mut word = String::new();
-            if r >> 16 & 1 == 1 {
-                word.push('-');
-            }
-            for k in 0..digits {
-                if k == point && r >> 17 & 1 == 1 {
-                    word.push('.');
-                }
-                word.push((b'0' + (next() % 10) as u8) as char);
-            }
-            same_as_std(&word);
+            same_as_std(&decimal_word(&mut next, 20));
         }
     }
 
     #[test]
-    fn indices_read_as_str_parse_reads_them() {
+    fn leading_digits_of_every_length_before_any_byte() {
+        let mut next = draws(17);
+        for _ in 0..100_000 {
+            let r = next();
+            let len = (r % 9) as usize;
+            let mut chunk = [0u8; 8];
+            for (k, b) in chunk.iter_mut().enumerate() {
+                let any = (next() >> 8) as u8;
+                *b = if k < len {
+                    b'0' + (next() % 10) as u8
+                } else {
+                    any
+                };
+            }
+            let digits = chunk.iter().take_while(|b| b.is_ascii_digit()).count();
+            let (value, read) = leading_digits(chunk);
+            assert_eq!(read, digits, "{chunk:?}");
+            if (1..8).contains(&digits) {
+                let text = std::str::from_utf8(&chunk[..digits]).unwrap();
+                assert_eq!(value, text.parse::<u64>().unwrap(), "{chunk:?}");
+            }
+        }
+    }
+
+    /// `word` read in place, as inside a file's text (more bytes after it), reads as
+    /// `str::parse` reads it, whatever ends it.
+    fn same_as_std_in_text(word: &str) {
+        let std = word.parse::<f32>().ok().map(f32::to_bits);
+        for end in [" 1234567890", "\n", "/0123456789", "\r\n v 1 2 3"] {
+            let text = format!("{word}{end}");
+            let mut at = 0;
+            let read = decimal_at(text.as_bytes(), &mut at).filter(|_| at == word.len());
+            if let Some(value) = read {
+                assert_eq!(Some(value.to_bits()), std, "{text:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn decimals_in_text_read_as_str_parse_reads_them() {
+        let mut next = draws(13);
+        let mut read = 0;
+        for _ in 0..200_000 {
+            let word = decimal_word(&mut next, 16);
+            same_as_std_in_text(&word);
+            let text = format!("{word} 0123456789");
+            read += decimal_at(text.as_bytes(), &mut 0).is_some() as usize;
+        }
+        assert!(read > 50_000, "{read} of 200000 read in place");
         for word in [
-            "1",
-            "-1",
-            "+7",
-            "0",
-            "-0",
-            "",
-            "-",
-            "+",
-            "1a",
-            "a1",
-            "1/2",
-            "999999999999999999",
-            "9223372036854775807",
-            "9223372036854775808",
-            "-9223372036854775808",
-            "00000000000000000000001",
-            "１",
+            "0", "-0.5", "1.", ".5", ".", "-", "+", "1.2.3", "16777216", "16777217",
         ] {
+            same_as_std_in_text(word);
+        }
+    }
+
+    /// Index words of every form: signed, empty, malformed, long, overflowing, not ASCII.
+    const INDEX_WORDS: &[&str] = &[
+        "1",
+        "-1",
+        "+7",
+        "0",
+        "-0",
+        "",
+        "-",
+        "+",
+        "1a",
+        "a1",
+        "1/2",
+        "1234567",
+        "12345678",
+        "999999999999999999",
+        "9223372036854775807",
+        "9223372036854775808",
+        "-9223372036854775808",
+        "00000000000000000000001",
+        "１",
+    ];
+
+    #[test]
+    fn indices_read_as_str_parse_reads_them() {
+        for word in INDEX_WORDS {
             assert_eq!(parse_index(word), word.parse::<i64>().ok(), "{word:?}");
+        }
+    }
+
+    #[test]
+    fn indices_in_text_read_as_str_parse_reads_them() {
+        for word in INDEX_WORDS {
+            for end in ["/0123456789", " 12345678", "\n"] {
+                let text = format!("{word}{end}");
+                let mut at = 0;
+                let read = index_at(text.as_bytes(), &mut at);
+                let std = word.parse::<i64>().ok();
+                match read {
+                    Some(value) if at == word.len() => assert_eq!(Some(value), std, "{text:?}"),
+                    _ => assert!(std.is_none() || word.len() > 18, "{text:?}"),
+                }
+            }
         }
     }
 }
