@@ -7,9 +7,12 @@
 //! and line numbers for the whole file. Materials are named, not numbered, since their
 //! numbers depend on the names met before.
 //!
-//! Lines are read as bytes: a line of ASCII text is split into words without decoding it; a
-//! line with other bytes is decoded as UTF-8 (invalid bytes replaced), as every line once was,
-//! so a comment in another encoding is no obstacle and a number in one is no number.
+//! Lines are read as bytes. In an ASCII piece (nearly every file) a plain statement (`v`, `vn`,
+//! `vt` or `f` of plain numbers) is read in place, straight from the piece's text up to its
+//! `\n`, the text never cut into lines; any other line is cut out and split into words without
+//! decoding it. A piece with other bytes is read line by line, a line that is not ASCII decoded
+//! as UTF-8 (invalid bytes replaced), as every line once was, so a comment in another encoding
+//! is no obstacle and a number in one is no number.
 
 use glam::{Vec2, Vec3};
 
