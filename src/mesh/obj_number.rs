@@ -114,7 +114,7 @@ fn digits_in_place(bytes: &[u8], at: usize) -> Option<(u64, usize)> {
 /// The digits are then moved to the top of the word (zeros before them) and joined pairwise:
 /// pairs, fours, then eight.
 #[inline]
-pub fn leading_digits(chunk: [u8; 8]) -> (u64, usize) {
+fn leading_digits(chunk: [u8; 8]) -> (u64, usize) {
     let digits = u64::from_le_bytes(chunk).wrapping_sub(0x3030_3030_3030_3030);
     let no_digit = (digits.wrapping_add(0x7676_7676_7676_7676) | digits) & 0x8080_8080_8080_8080;
     let len = (no_digit.trailing_zeros() / 8) as usize;

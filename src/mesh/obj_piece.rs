@@ -186,9 +186,9 @@ pub fn read_piece(
         limit: crate::memory_budget::triangle_cap(),
     };
     // ASCII (as nearly every file is): every byte a character, so lines and words split at
-    // bytes are whole characters, and the text is checked once, not line by line.
-    // Plain statements are read in place, the text never cut into lines; any other line is
-    // cut out and read by words.
+    // bytes are whole characters, and the text is checked once, not line by line. Plain
+    // statements are read in place, the text never cut into lines; any other line is cut out
+    // and read by words.
     if text.is_ascii() {
         let ascii = std::str::from_utf8(text).unwrap_or_default();
         let (mut at, mut number) = (0, before.lines);
@@ -263,8 +263,7 @@ impl PieceReader {
         line: &'a str,
         mut words: impl Iterator<Item = &'a str>,
     ) -> Result<(), ObjProblem> {
-        // A face or a vertex read byte by byte when plain, else by words (naming what is
-        // wrong).
+        // A plain statement read in place, else by words (naming what is wrong).
         if self.plain_statement(line.as_bytes(), 0)? == Some(line.len()) {
             return Ok(());
         }
