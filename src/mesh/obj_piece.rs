@@ -702,6 +702,12 @@ mod tests {
             "usemtl red",
             "g group",
             "v 1e40 0 0",
+            "v\t1 2 3",
+            "f\t1 2 3",
+            "vn\t0 1 0",
+            "vt\t0 1",
+            "vx 1 2 3",
+            "\tf 1 2 3",
         ];
         let mut next = below(7);
         for _ in 0..300 {
@@ -723,6 +729,19 @@ mod tests {
             // A comment that is not ASCII sends the whole text through the line-by-line path.
             let by_lines = read(&format!("{text}\n# é"));
             assert_eq!(read(&text), by_lines, "{text:?}");
+            // The statements counted are those whose first word names them.
+            let mut by_words = Counts::default();
+            for line in text.lines() {
+                by_words.lines += 1;
+                match line.split_whitespace().next() {
+                    Some("v") => by_words.positions += 1,
+                    Some("vt") => by_words.uvs += 1,
+                    Some("vn") => by_words.normals += 1,
+                    Some("f") => by_words.faces += 1,
+                    _ => {}
+                }
+            }
+            assert_eq!(count_statements(text.as_bytes()), by_words, "{text:?}");
         }
     }
 
