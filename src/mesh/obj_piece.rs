@@ -200,7 +200,7 @@ pub fn read_piece(
                     let end = memchr::memchr(b'\n', &text[at..]).map_or(text.len(), |e| at + e);
                     let line = ascii.get(at..end).unwrap_or_default();
                     reader
-                        .statement(number, line, AsciiWords(line))
+                        .statement_by_words(number, line, AsciiWords(line))
                         .map_err(|problem| (number, problem))?;
                     end
                 }
@@ -214,10 +214,15 @@ pub fn read_piece(
         let number = before.lines + n + 1;
         let result = if line.is_ascii() {
             let line = std::str::from_utf8(line).unwrap_or_default();
-            reader.statement(number, line, AsciiWords(line))
+            // A plain statement read in place, else by words (naming what is wrong).
+            match reader.plain_statement(line.as_bytes(), 0) {
+                Ok(Some(_)) => Ok(()),
+                Ok(None) => reader.statement_by_words(number, line, AsciiWords(line)),
+                Err(problem) => Err(problem),
+            }
         } else {
             let line = String::from_utf8_lossy(line);
-            reader.statement(number, &line, line.split_whitespace())
+            reader.statement_by_words(number, &line, line.split_whitespace())
         };
         result.map_err(|problem| (number, problem))?;
     }
@@ -256,17 +261,14 @@ struct PieceReader {
 }
 
 impl PieceReader {
-    /// Reads line `number` of the file (`line`, split into `words`).
-    fn statement<'a>(
+    /// Reads line `number` of the file (`line`, split into `words`) by its words: a line
+    /// [`PieceReader::plain_statement`] did not read, or one that is not ASCII.
+    fn statement_by_words<'a>(
         &mut self,
         number: usize,
         line: &'a str,
         mut words: impl Iterator<Item = &'a str>,
     ) -> Result<(), ObjProblem> {
-        // A plain statement read in place, else by words (naming what is wrong).
-        if self.plain_statement(line.as_bytes(), 0)? == Some(line.len()) {
-            return Ok(());
-        }
         let piece = &mut self.piece;
         match words.next() {
             Some("v") => {
@@ -383,7 +385,7 @@ impl PieceReader {
     /// Reads the plain statement at `text[at..]`, a line's start, in place: a `v` of three
     /// plain decimals, a `vn` of three, a `vt` of two, or an `f` of plain corners (see
     /// [`plain_corners`]). `Some(end)` when done, `end` the line's end (its `\n` or the text's
-    /// end); `None` leaves the piece as it was, for [`PieceReader::statement`] to read the line
+    /// end); `None` leaves the piece as it was, for [`PieceReader::statement_by_words`] to read the line
     /// by words (and name what is wrong). A vertex out of range is an error, as read by words.
     fn plain_statement(&mut self, text: &[u8], at: usize) -> Result<Option<usize>, ObjProblem> {
         let mut end = at;
