@@ -438,3 +438,21 @@ fn blenders_obj_and_mtl_load_with_their_materials_and_an_upright_texture() {
         }
     }
 }
+
+#[test]
+fn info_counts_the_parts_drawn_with_the_files_materials() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/obj_mtl");
+    for (file, expected) in [
+        ("two_materials.obj", "2 parts with materials of the file's"),
+        ("textured_quad.obj", "1 part with a material of the file's"),
+    ] {
+        let out = rastray(&["info", data.join(file).to_str().unwrap()]);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(out.status.code(), Some(0), "{file}: {stdout}");
+        let describe = stdout
+            .lines()
+            .find(|l| l.trim_start().starts_with("OBJ"))
+            .unwrap_or_else(|| panic!("{file}: {stdout}"));
+        assert!(describe.contains(expected), "{file}: {describe}");
+    }
+}

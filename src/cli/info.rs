@@ -226,8 +226,10 @@ fn describe(model: &MeshFile) -> String {
         .iter()
         .filter(|p| p.material.is_some())
         .count();
-    if materials > 0 {
-        text += &format!(", {materials} materials");
+    match materials {
+        0 => {}
+        1 => text += ", 1 part with a material of the file's",
+        n => text += &format!(", {n} parts with materials of the file's"),
     }
     if let MeshFile::Ply(ply) = model
         && let Some(texture) = &ply.texture
