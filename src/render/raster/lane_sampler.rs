@@ -104,6 +104,10 @@ fn read_level<L: Lanes8>(
     match filter {
         Filter::Nearest => {
             let (i, j) = (floor_small(x)?, floor_small(y)?);
+            if let Some(tiling) = Tiling::of(sampler, level) {
+                let [index, ..] = tiling.indices(i, j);
+                return Some(texels(level, &index));
+            }
             let (column, _) = lane_neighbours(i, width, wrap_x);
             let (row, _) = lane_neighbours(j, height, wrap_y);
             // Whole numbers below width × height ≤ 2^24: exact.
@@ -116,17 +120,22 @@ fn read_level<L: Lanes8>(
             let (x, y) = (x - half, y - half);
             let (x0, y0) = (floor_small(x)?, floor_small(y)?);
             let (fx, fy) = (x - x0, y - y0);
-            let (i0, i1) = lane_neighbours(x0, width, wrap_x);
-            let (j0, j1) = lane_neighbours(y0, height, wrap_y);
-            // Whole numbers below width × height ≤ 2^24: exact.
-            let w = L::splat(width as f32);
-            let (row0, row1) = (j0 * w, j1 * w);
-            let index = [
-                (row0 + i0).to_whole_u32(),
-                (row0 + i1).to_whole_u32(),
-                (row1 + i0).to_whole_u32(),
-                (row1 + i1).to_whole_u32(),
-            ];
+            let index = match Tiling::of(sampler, level) {
+                Some(tiling) => tiling.indices(x0, y0),
+                None => {
+                    let (i0, i1) = lane_neighbours(x0, width, wrap_x);
+                    let (j0, j1) = lane_neighbours(y0, height, wrap_y);
+                    // Whole numbers below width × height ≤ 2^24: exact.
+                    let w = L::splat(width as f32);
+                    let (row0, row1) = (j0 * w, j1 * w);
+                    [
+                        (row0 + i0).to_whole_u32(),
+                        (row0 + i1).to_whole_u32(),
+                        (row1 + i0).to_whole_u32(),
+                        (row1 + i1).to_whole_u32(),
+                    ]
+                }
+            };
             // Four calls, not `index.map(..)`: the compiler leaves a map's closure out of line.
             let (t00, t10) = (texels(level, &index[0]), texels(level, &index[1]));
             let (t01, t11) = (texels(level, &index[2]), texels(level, &index[3]));
@@ -134,6 +143,53 @@ fn read_level<L: Lanes8>(
             let bottom = t01 + (t11 - t01) * fx;
             Some(top + (bottom - top) * fy)
         }
+    }
+}
+
+/// A level of power-of-two sides repeated on both axes, whose texel indices are found with
+/// masks and a shift on whole numbers: the indices the wrap in lanes ([`lane_neighbours`])
+/// finds, with none of its divisions and conversions.
+struct Tiling {
+    /// Width − 1 and height − 1.
+    masks: (u32, u32),
+    /// log2 of the width.
+    shift: u32,
+}
+
+impl Tiling {
+    /// The tiling of `level` under `sampler`, when both of its sides are powers of two and both
+    /// wrap by repeating.
+    #[inline(always)]
+    fn of(sampler: &Sampler, level: &MipLevel) -> Option<Tiling> {
+        let (w, h) = (level.width, level.height);
+        (sampler.wrap == [Wrap::Repeat; 2] && w.is_power_of_two() && h.is_power_of_two()).then(
+            || Tiling {
+                masks: (w - 1, h - 1),
+                shift: w.trailing_zeros(),
+            },
+        )
+    }
+
+    /// The indices of the texels at whole-number coordinates (`i`, `j`) (within ±2^22), at
+    /// (`i` + 1, `j`), (`i`, `j` + 1) and (`i` + 1, `j` + 1), lane by lane. A negative
+    /// coordinate truncates to its two's complement, whose low bits are its remainder.
+    #[inline(always)]
+    fn indices<L: Lanes8>(&self, i: L, j: L) -> [[u32; WIDTH]; 4] {
+        let (i, j) = (i.to_whole_u32(), j.to_whole_u32());
+        let (mx, my) = self.masks;
+        let mut index = [[0; WIDTH]; 4];
+        for k in 0..WIDTH {
+            let (i0, i1) = (i[k] & mx, i[k].wrapping_add(1) & mx);
+            let (row0, row1) = (
+                (j[k] & my) << self.shift,
+                (j[k].wrapping_add(1) & my) << self.shift,
+            );
+            index[0][k] = row0 | i0;
+            index[1][k] = row0 | i1;
+            index[2][k] = row1 | i0;
+            index[3][k] = row1 | i1;
+        }
+        index
     }
 }
 
