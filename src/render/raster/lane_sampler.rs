@@ -105,8 +105,7 @@ fn read_level<L: Lanes8>(
         Filter::Nearest => {
             let (i, j) = (floor_small(x)?, floor_small(y)?);
             if let Some(tiling) = Tiling::of(sampler, level) {
-                let [index, ..] = tiling.indices(i, j);
-                return Some(texels(level, &index));
+                return Some(texels(level, &tiling.index(i, j)));
             }
             let (column, _) = lane_neighbours(i, width, wrap_x);
             let (row, _) = lane_neighbours(j, height, wrap_y);
@@ -168,6 +167,15 @@ impl Tiling {
                 shift: w.trailing_zeros(),
             },
         )
+    }
+
+    /// The index of the texel at whole-number coordinates (`i`, `j`) (within ±2^22), lane by
+    /// lane: the first of [`Tiling::indices`].
+    #[inline(always)]
+    fn index<L: Lanes8>(&self, i: L, j: L) -> [u32; WIDTH] {
+        let (i, j) = (i.to_whole_u32(), j.to_whole_u32());
+        let (mx, my) = self.masks;
+        std::array::from_fn(|k| (j[k] & my) << self.shift | i[k] & mx)
     }
 
     /// The indices of the texels at whole-number coordinates (`i`, `j`) (within ±2^22), at
