@@ -15,7 +15,7 @@ use crate::memory_budget::{Estimate, distinct_texture_bytes};
 use crate::mesh::texture::Appearance;
 use crate::mesh::{
     Mesh, MeshFile, MeshFileError, ModelPart, Sphere, UniquePositions, instance_transform,
-    placed_shape, tessellate, tessellate_part, tessellate_shared, with_corner_uvs,
+    placed_shape, shared_shape, tessellate, tessellate_part, tessellate_shared, with_corner_uvs,
 };
 use crate::scene::{
     Falloff, Light, Material, MaterialSource, Object, Scene, SceneError, SceneWarning, Shape,
@@ -291,7 +291,8 @@ pub enum Detail {
     /// Where the triangles are and nothing more, for `rastray info`: a model part's mesh is its
     /// placed positions, triangles and vertex colours ([`placed_shape`]), without normals and
     /// drawn plain. Counts, bounds, materials and the scene's warnings are as [`Detail::Render`]
-    /// gives them. Parts shared by several instances are built as for rendering.
+    /// gives them. A part shared by several instances is one bare shape ([`shared_shape`]) that
+    /// each instance places.
     Shape,
 }
 
@@ -361,16 +362,24 @@ fn part_appearance(object: &Object, part: &ModelPart<'_>, mesh: Mesh) -> (Mesh, 
 /// The world objects of `part`, a part shared by several instances, of scene object `object`
 /// (the `index`-th) whose model is centred on `centre`: its mesh tessellated once, in its own
 /// space, and one object per instance holding it. An instance whose placement cannot be inverted
-/// in f32 gets a placed mesh of its own.
+/// in f32 gets a placed mesh of its own. At [`Detail::Shape`] the meshes are bare shapes, drawn
+/// plain.
 fn instances_of(
     object: &Object,
     index: usize,
     part: &ModelPart<'_>,
     centre: Vec3,
+    detail: Detail,
 ) -> Vec<(WorldObject, WorldObjectSource)> {
-    let (mesh, appearance) =
-        part_appearance(object, part, tessellate_shared(object, part.geometry));
-    let uvs = WorldObject::new(mesh, object.material).with_uvs_of(part.geometry);
+    let (mesh, appearance) = match detail {
+        Detail::Render => part_appearance(object, part, tessellate_shared(object, part.geometry)),
+        Detail::Shape => (shared_shape(part.geometry), Appearance::plain()),
+    };
+    let uvs = WorldObject::new(mesh, object.material);
+    let uvs = match detail {
+        Detail::Render => uvs.with_uvs_of(part.geometry),
+        Detail::Shape => uvs,
+    };
     let shared = Arc::new(SharedMesh {
         unique: UniquePositions::of(&uvs.mesh),
         corner_uvs: uvs.corner_uvs,
@@ -394,6 +403,10 @@ fn instances_of(
                         *p = placement.transform.transform_point3(*p);
                     }
                     geometry.corner_normals = None;
+                    if detail == Detail::Shape {
+                        let mesh = placed_shape(object, &geometry, centre);
+                        return (WorldObject::new(mesh, material), source);
+                    }
                     let mesh = tessellate_part(object, &geometry, centre);
                     let (mesh, appearance) = part_appearance(object, part, mesh);
                     WorldObject::with_appearance(mesh, material, appearance)
@@ -555,7 +568,7 @@ impl World {
                         .par_iter()
                         .flat_map_iter(|part| {
                             if !part.instances.is_empty() {
-                                return instances_of(object, index, part, centre);
+                                return instances_of(object, index, part, centre, detail);
                             }
                             let source = WorldObjectSource {
                                 object: index,

@@ -7,7 +7,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use rastray::render::{Algorithm, DisplayMode, RenderOptions};
-use rastray::world::{MeshFileCache, World};
+use rastray::world::{Detail, MeshFileCache, World};
 
 /// The nodes: (translation, rotation quaternion xyzw, scale). A floor under four cubes, one
 /// turned, one scaled unevenly and one mirrored (a negative scale), and a row of small ones:
@@ -161,6 +161,39 @@ fn an_instanced_mesh_is_stored_once_and_placed_at_every_node() {
     }
     let labels: Vec<_> = shared.sources.iter().map(|s| s.part.clone()).collect();
     assert_eq!(labels[1].as_deref(), Some("node 1, mesh 0 primitive 0"));
+}
+
+/// `rastray info` builds instances as bare shapes: one shared mesh with no normals, and the
+/// same counts and bounds, bit for bit, as the world the renderers draw.
+#[test]
+fn a_shape_world_places_bare_shared_shapes_where_the_render_world_places_its_instances() {
+    let scene = scene_of(&write_cubes(true));
+    let build = |detail| {
+        World::build_report_with(
+            &scene,
+            Path::new("."),
+            &mut MeshFileCache::default(),
+            detail,
+        )
+        .expect("builds")
+        .world
+    };
+    let (render, shape) = (build(Detail::Render), build(Detail::Shape));
+    assert_eq!(shape.objects.len(), NODES.len());
+    assert_eq!(shape.triangle_count(), render.triangle_count());
+    assert_eq!(shape.stored_triangle_count(), 12);
+    assert_eq!(shape.bounds(), render.bounds());
+    for (s, r) in shape.objects.iter().zip(&render.objects) {
+        let shared = &s.instance.as_ref().expect("an instance").shared;
+        assert!(
+            shared.mesh.normals.is_empty(),
+            "a bare shape has no normals"
+        );
+        assert!(shared.corner_uvs.is_none());
+        assert!(!r.instance.as_ref().unwrap().shared.mesh.normals.is_empty());
+        assert_eq!(s.extent, r.extent);
+        assert_eq!(s.material.color, r.material.color);
+    }
 }
 
 #[test]

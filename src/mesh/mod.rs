@@ -48,7 +48,7 @@ pub use obj::{ObjRead, load_obj, read_obj, read_obj_in_blocks};
 pub use obj_error::{ObjError, ObjProblem};
 pub use obj_model::{MAX_MTL_BYTES, ObjModel, ObjPart, load_obj_model};
 pub use patch::FaceList;
-pub use placed_shape::placed_shape;
+pub use placed_shape::{placed_shape, shared_shape};
 pub use ply::{PlyEncoding, PlyError, PlyModel, load_ply};
 pub use prism::prism;
 pub use srgb::{srgb_byte_to_linear, srgb_to_linear};

@@ -20,7 +20,20 @@ use crate::scene::Object;
 /// # Panics
 /// If `object` is not a mesh object (a caller bug).
 pub fn placed_shape(object: &Object, geometry: &ModelGeometry, centre: Vec3) -> Mesh {
-    let positions = placed_positions(object, geometry, centre);
+    bare_shape(placed_positions(object, geometry, centre), geometry)
+}
+
+/// `geometry`'s used vertices where the file puts them, its triangles on them and its vertex
+/// colours, with no normals: the shape of a part shared by several instances, each of which
+/// places it ([`super::instance_transform`]). Its points are those of
+/// [`super::tessellate_shared`]'s mesh, so each instance's bounds are the same.
+pub fn shared_shape(geometry: &ModelGeometry) -> Mesh {
+    bare_shape(geometry.positions.clone(), geometry)
+}
+
+/// The used ones of `positions` (one per vertex of `geometry`), `geometry`'s triangles on them
+/// and its vertex colours.
+fn bare_shape(positions: Vec<Vec3>, geometry: &ModelGeometry) -> Mesh {
     // Copied on every core: 16 MB for the 1.31M-triangle icosphere.
     let mut triangles: Vec<[u32; 3]> = geometry.triangles.par_iter().copied().collect();
     match drop_unused(&mut triangles, geometry.positions.len()) {
