@@ -228,6 +228,15 @@ pub trait Lanes8: Lanes {
         })
     }
 
+    /// [`Lanes8::rgb16`] of the first texel of each of eight pairs, and of the second.
+    #[inline(always)]
+    fn rgb16_pairs(pairs: &[[[u16; 4]; 2]; WIDTH]) -> ([Self; 3], [Self; 3]) {
+        (
+            Self::rgb16(&pairs.map(|[first, _]| first)),
+            Self::rgb16(&pairs.map(|[_, second]| second)),
+        )
+    }
+
     /// Sixteen lanes: two batches of eight worked on at once. One AVX-512 register where the
     /// CPU has it, else the two halves side by side ([`Twice`]).
     type Pair: Lanes;
