@@ -180,11 +180,7 @@ impl WorldObject {
     /// This object with the texture coordinates of `geometry`, the file it was tessellated
     /// from, when the file has them for each of the mesh's triangles.
     fn with_uvs_of(mut self, geometry: &crate::mesh::ModelGeometry) -> WorldObject {
-        self.corner_uvs = geometry
-            .corner_uvs
-            .as_ref()
-            .filter(|uvs| uvs.len() == self.mesh.triangles.len())
-            .cloned();
+        self.corner_uvs = corner_uvs_for(geometry, &self.mesh);
         self
     }
 
@@ -192,6 +188,17 @@ impl WorldObject {
     pub fn is_textured(&self) -> bool {
         self.appearance.base_color.is_some() && self.local_mesh().uvs.is_some()
     }
+}
+
+/// `geometry`'s corner texture coordinates, when it has one set a triangle of `mesh` (a mesh
+/// tessellated from it, its triangles in the file's order).
+fn corner_uvs_for(
+    geometry: &crate::mesh::ModelGeometry,
+    mesh: &Mesh,
+) -> Option<Vec<[glam::Vec2; 3]>> {
+    (geometry.corner_uvs.as_ref())
+        .filter(|uvs| uvs.len() == mesh.triangles.len())
+        .cloned()
 }
 
 /// A mesh's distinct positions and its triangles' corners as indices into them
@@ -371,19 +378,19 @@ fn instances_of(
     centre: Vec3,
     detail: Detail,
 ) -> Vec<(WorldObject, WorldObjectSource)> {
-    let (mesh, appearance) = match detail {
-        Detail::Render => part_appearance(object, part, tessellate_shared(object, part.geometry)),
-        Detail::Shape => (shared_shape(part.geometry), Appearance::plain()),
-    };
-    let uvs = WorldObject::new(mesh, object.material);
-    let uvs = match detail {
-        Detail::Render => uvs.with_uvs_of(part.geometry),
-        Detail::Shape => uvs,
+    let (mesh, corner_uvs, appearance) = match detail {
+        Detail::Render => {
+            let (mesh, appearance) =
+                part_appearance(object, part, tessellate_shared(object, part.geometry));
+            let corner_uvs = corner_uvs_for(part.geometry, &mesh);
+            (mesh, corner_uvs, appearance)
+        }
+        Detail::Shape => (shared_shape(part.geometry), None, Appearance::plain()),
     };
     let shared = Arc::new(SharedMesh {
-        unique: UniquePositions::of(&uvs.mesh),
-        corner_uvs: uvs.corner_uvs,
-        mesh: uvs.mesh,
+        unique: UniquePositions::of(&mesh),
+        corner_uvs,
+        mesh,
     });
     let material = part_material(object, part.material);
     part.instances
