@@ -37,6 +37,7 @@ pub mod memory_budget;
 pub mod mesh;
 pub mod model_folder;
 pub mod model_scene;
+pub mod pool_thread;
 pub mod preset_view;
 pub mod render;
 pub mod scene;

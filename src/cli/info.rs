@@ -6,6 +6,7 @@ use std::path::Path;
 
 use glam::Vec3;
 use rastray::mesh::{Measurements, MeshFile, instance_transform, measure};
+use rastray::pool_thread::on_pool_thread;
 use rastray::scene::Shape;
 use rastray::text_escape::Escaped;
 use rastray::world::{Detail, MeshFileCache, WorldObject};
@@ -15,6 +16,13 @@ use rastray::world::{Detail, MeshFileCache, WorldObject};
 type PlacedPart<'a> = (Cow<'a, [Vec3]>, &'a [[u32; 3]]);
 
 pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()> {
+    // Reading, building and measuring run on the pool, whose threads then share their
+    // parallel steps.
+    on_pool_thread(|| report(path, up))
+}
+
+/// What [`run`] prints, worked out and printed on the calling thread.
+fn report(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()> {
     let mut cache = MeshFileCache::default();
     let (scene, base) = super::load_scene(Some(path), up, &mut cache)?;
     // Only what is printed is built: no normals, no texture coordinates.

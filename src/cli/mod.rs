@@ -31,6 +31,7 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 use rastray::mesh::EXPECTED_MODEL;
+use rastray::pool_thread::on_pool_thread;
 use rastray::render::Size;
 use rastray::scene::{SceneError, UpAxis};
 use rastray::terminal_image::ColorMode;
@@ -311,9 +312,12 @@ pub fn load_world(
     up: Option<UpAxis>,
     mut cache: MeshFileCache,
 ) -> anyhow::Result<(Scene, WorldReport)> {
-    let (scene, base) = load_scene(path, up, &mut cache)?;
-    let report = build_world(&scene, &base, path, &mut cache)?;
-    Ok((scene, report))
+    // Reading and building run on the pool, whose threads then share their parallel steps.
+    on_pool_thread(|| {
+        let (scene, base) = load_scene(path, up, &mut cache)?;
+        let report = build_world(&scene, &base, path, &mut cache)?;
+        Ok((scene, report))
+    })
 }
 
 /// Builds the world of `scene` (model paths relative to `base`), read from `input` (`None`

@@ -133,7 +133,7 @@ fn on_pool<R: Send>(
     work: impl FnOnce() -> R + Send,
 ) -> Result<R, RenderError> {
     let Some(threads) = threads.map(|n| n.get()) else {
-        return Ok(rayon::scope(|_| work()));
+        return Ok(crate::pool_thread::on_pool_thread(work));
     };
     if pool
         .as_ref()

@@ -378,7 +378,9 @@ fn load(
     Ok(match path {
         Some(p) if crate::model_scene::is_model_file(p) => {
             // Read once: the worker's first world takes the model from `cache`.
-            let (scene, folder) = crate::model_scene::scene_for_model_cached(p, up, cache)?;
+            let (scene, folder) = crate::pool_thread::on_pool_thread(|| {
+                crate::model_scene::scene_for_model_cached(p, up, cache)
+            })?;
             let mut app = App::new(scene, None, folder);
             let file = p.file_name().unwrap_or_default().to_string_lossy();
             app.doc.name_untitled(format!("new scene of {file}"));

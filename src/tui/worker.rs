@@ -9,6 +9,7 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 use crate::World;
 use crate::memory_budget::{BYTES_PER_STILL_PIXEL, Estimate};
 use crate::mesh::{Measurements, measure};
+use crate::pool_thread::on_pool_thread;
 use crate::render::{
     Algorithm, DisplayMode, Frame, Overlays, Progress, RenderError, RenderOptions, Renderer,
     ground_grid, objects_without_uvs, overlay_bounds,
@@ -218,7 +219,9 @@ fn serve(rx: Receiver<Request>, mut cache: MeshFileCache, reply: impl Fn(RenderR
         let generation = request.wanted.generation;
         let (current, sources) = match &world {
             Some((g, w, s)) if *g == generation => (w.clone(), s.clone()),
-            _ => match World::build_report(&request.scene, &request.base_dir, &mut cache) {
+            _ => match on_pool_thread(|| {
+                World::build_report(&request.scene, &request.base_dir, &mut cache)
+            }) {
                 Ok(report) => {
                     let w = report.world;
                     let found = warnings(&request.scene, &request.wanted.camera, &w);
@@ -282,7 +285,7 @@ fn serve(rx: Receiver<Request>, mut cache: MeshFileCache, reply: impl Fn(RenderR
                 reply(RenderReply::Shape {
                     id: request.id,
                     object,
-                    measurements: measure(&parts),
+                    measurements: on_pool_thread(|| measure(&parts)),
                 });
             }
         }
