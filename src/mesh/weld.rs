@@ -311,16 +311,40 @@ pub type Indexed<T> = (Vec<T>, Vec<[u32; 3]>);
 pub fn weld_used<T: Copy + Send + Sync, const N: usize>(
     vertices: Vec<T>,
     key: impl Fn(&T) -> [u32; N] + Sync,
-    mut triangles: Vec<[u32; 3]>,
+    triangles: Vec<[u32; 3]>,
     repeats: Repeats,
 ) -> Indexed<T> {
     let used = used_bits(&triangles, vertices.len());
+    weld_where(vertices, key, triangles, repeats, |i| {
+        used[i / 64] >> (i % 64) & 1 == 1
+    })
+}
+
+/// As [`weld_used`], for `triangles` that use every vertex (a triangle soup's corners, as an
+/// ASCII STL gives them): no pass to find the used ones.
+pub fn weld_all<T: Copy + Send + Sync, const N: usize>(
+    vertices: Vec<T>,
+    key: impl Fn(&T) -> [u32; N] + Sync,
+    triangles: Vec<[u32; 3]>,
+    repeats: Repeats,
+) -> Indexed<T> {
+    weld_where(vertices, key, triangles, repeats, |_| true)
+}
+
+/// [`weld_used`] with vertex `i` used where `used(i)`.
+fn weld_where<T: Copy + Send + Sync, const N: usize>(
+    vertices: Vec<T>,
+    key: impl Fn(&T) -> [u32; N] + Sync,
+    mut triangles: Vec<[u32; 3]>,
+    repeats: Repeats,
+    used: impl Fn(usize) -> bool + Sync,
+) -> Indexed<T> {
     let mut index = vec![0u32; vertices.len()];
     let kept = weld(
         &mut index,
         repeats,
         |i| key(&vertices[i]),
-        |i| used[i / 64] >> (i % 64) & 1 == 1,
+        used,
         |i| i as u32,
     );
     if kept.len() == vertices.len() {
@@ -425,6 +449,21 @@ mod tests {
             let (kept, welded) = weld_used(keys.clone(), |k| *k, triangles.clone(), repeats);
             assert_eq!(kept, vec![[5, 0], [7, 0]], "{repeats:?}");
             assert_eq!(welded, vec![[0, 1, 1], [0, 1, 1]], "{repeats:?}");
+        }
+    }
+
+    #[test]
+    fn a_soup_of_corners_welds_alike_with_or_without_the_used_pass() {
+        // Every corner its own vertex, as an ASCII STL reads them: 3,000 triangles on 1,000 keys.
+        let keys: Vec<[u32; 3]> = (0..9_000u32).map(|i| [(i * 7) % 1_000, 3, 4]).collect();
+        let triangles: Vec<[u32; 3]> = (0..3_000u32)
+            .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+            .collect();
+        for repeats in [Repeats::Near, Repeats::Rare] {
+            let all = weld_all(keys.clone(), |k| *k, triangles.clone(), repeats);
+            let used = weld_used(keys.clone(), |k| *k, triangles.clone(), repeats);
+            assert_eq!(all.0.len(), 1_000, "{repeats:?}");
+            assert_eq!(all, used, "{repeats:?}");
         }
     }
 
