@@ -100,9 +100,6 @@ impl Measurements {
 /// left it to one.
 const PIECE: usize = 1 << 13;
 
-/// Edge uses counted as one row of vertices (see [`edge_counts`]).
-const ROW_PIECE: usize = 1 << 16;
-
 /// Measures the triangles of `parts` (each a position list and triangles indexing it) as one
 /// mesh, welded across parts. Sums, edges and the sort run on the current rayon pool.
 pub fn measure(parts: &[(&[Vec3], &[[u32; 3]])]) -> Measurements {
@@ -263,76 +260,30 @@ struct EdgeCounts {
 /// edge between equal corners. Vertex ids are below 2³¹ (a world holds at most a few tens of
 /// millions), so an edge's higher end and direction fit one `u32`.
 ///
-/// The edges are gathered by their lower end (a counting sort: two passes, no comparisons),
-/// then each vertex's few edges are sorted on their own, the vertices shared out among the
-/// cores: a mesh's edges in about a third of the time one sort of them all took. Both passes
-/// of the counting sort run on every core, each core reading all the triangles and writing
-/// only the rows of its own range of vertices (see [`by_lower_end`]).
+/// The triangles are cut into one run a core, and each run gathers its edges by their lower
+/// end on its own (a counting sort: two passes, no comparisons; [`RunRows`]), reading each
+/// triangle once a pass. Then each vertex's few edges, taken from every run's row, are sorted on
+/// their own, the vertices shared out among the cores. (Splitting the vertices among the cores
+/// instead had every core read every triangle, twice; one set of rows that all runs wrote into
+/// had two cores writing to the same cache lines.)
 fn edge_counts(triangles: &[[u32; 3]], vertices: usize) -> EdgeCounts {
-    let ranges = rayon::current_num_threads().clamp(1, MAX_RANGES);
-    let per_range = vertices.div_ceil(ranges).max(1);
-    // Row lengths: start[v + 1] counts the edges whose lower end is v.
-    let mut start = vec![0u32; vertices + 1];
-    start[1..]
-        .par_chunks_mut(per_range)
-        .enumerate()
-        .for_each(|(r, counts)| {
-            by_lower_end(triangles, r * per_range, counts.len(), |k, _| {
-                counts[k] += 1
-            })
-        });
-    // Edges by lower end, as compressed rows: ends[start[v]..start[v + 1]].
-    for v in 0..vertices {
-        start[v + 1] += start[v];
-    }
-    // Each edge's higher end shifted left one bit, and its direction in bit 0: the two uses of
-    // one edge sort side by side. Each range fills its own stretch of `ends`.
-    let mut ends = vec![0u32; start[vertices] as usize];
-    let mut stretches = Vec::with_capacity(ranges);
-    let mut rest = &mut ends[..];
-    for first in (0..vertices).step_by(per_range) {
-        let last = (first + per_range).min(vertices);
-        let (stretch, after) =
-            std::mem::take(&mut rest).split_at_mut((start[last] - start[first]) as usize);
-        stretches.push((first, last, stretch));
-        rest = after;
-    }
-    stretches
+    let runs = rayon::current_num_threads().clamp(1, MAX_RUNS);
+    let per_run = triangles.len().div_ceil(runs).max(1);
+    let runs: Vec<RunRows> = triangles
+        .par_chunks(per_run)
+        .map(|run| RunRows::of(run, vertices))
+        .collect();
+    (0..vertices.div_ceil(ROW_VERTICES))
         .into_par_iter()
-        .for_each(|(first, last, stretch)| {
-            let base = start[first];
-            let mut fill: Vec<u32> = start[first..last].iter().map(|&s| s - base).collect();
-            by_lower_end(triangles, first, last - first, |k, end| {
-                stretch[fill[k] as usize] = end;
-                fill[k] += 1;
-            });
-        });
-    // Rows of about ROW_PIECE edges, each counted on its own.
-    let mut rows: Vec<(usize, &mut [u32])> = Vec::new();
-    let mut rest = &mut ends[..];
-    let mut v = 0;
-    while v < vertices {
-        let first = start[v] as usize;
-        let mut last = v + 1;
-        while last < vertices && (start[last] as usize) - first < ROW_PIECE {
-            last += 1;
-        }
-        let (row, after) = std::mem::take(&mut rest).split_at_mut(start[last] as usize - first);
-        rows.push((v, row));
-        rest = after;
-        v = last;
-    }
-    rows.into_par_iter()
-        .map(|(first, row)| {
+        .map(|k| {
             let mut counts = EdgeCounts::default();
-            let mut at = 0;
-            for v in first.. {
-                let len = (start[v + 1] - start[v]) as usize;
-                if at >= row.len() {
-                    break;
+            let mut row = Vec::with_capacity(SHORT_ROW);
+            for v in k * ROW_VERTICES..((k + 1) * ROW_VERTICES).min(vertices) {
+                row.clear();
+                for run in &runs {
+                    row.extend_from_slice(run.row(v));
                 }
-                count_row(&mut row[at..at + len], &mut counts);
-                at += len;
+                count_row(&mut row, &mut counts);
             }
             counts
         })
@@ -343,27 +294,56 @@ fn edge_counts(triangles: &[[u32; 3]], vertices: usize) -> EdgeCounts {
         })
 }
 
-/// Most vertex ranges [`edge_counts`] splits a mesh into: each range reads every triangle once
-/// more.
-const MAX_RANGES: usize = 8;
+/// Most runs [`edge_counts`] cuts the triangles into: each holds a row start per vertex.
+const MAX_RUNS: usize = 8;
 
-/// Calls `edge(k, end)` for each edge of `triangles` whose lower end is vertex `first + k`,
-/// `k < len`, in triangle order: `end` is its higher end shifted left one bit, with its
-/// direction (whether it runs from higher to lower) in bit 0.
+/// Vertices whose edges one task of [`edge_counts`] counts.
+const ROW_VERTICES: usize = 1 << 13;
+
+/// The edges of some triangles by lower end, as compressed rows: each edge's higher end shifted
+/// left one bit, and its direction in bit 0, so that the two uses of one edge sort side by side.
+struct RunRows {
+    /// Where each vertex's row ends in `ends` (row `v` starts where row `v - 1` ends, row 0 at 0).
+    row_ends: Vec<u32>,
+    ends: Vec<u32>,
+}
+
+impl RunRows {
+    /// The rows of `triangles`' edges (vertex ids below `vertices`), each in triangle order.
+    fn of(triangles: &[[u32; 3]], vertices: usize) -> RunRows {
+        let mut row_ends = vec![0u32; vertices];
+        by_lower_end(triangles, |lower, _| row_ends[lower] += 1);
+        // Where each row starts; filling a row moves its entry on to where it ends.
+        let mut at = 0;
+        for row in &mut row_ends {
+            (*row, at) = (at, at + *row);
+        }
+        let mut ends = vec![0u32; at as usize];
+        by_lower_end(triangles, |lower, end| {
+            ends[row_ends[lower] as usize] = end;
+            row_ends[lower] += 1;
+        });
+        RunRows { row_ends, ends }
+    }
+
+    /// The edges whose lower end is vertex `v`.
+    fn row(&self, v: usize) -> &[u32] {
+        let start = if v == 0 { 0 } else { self.row_ends[v - 1] };
+        &self.ends[start as usize..self.row_ends[v] as usize]
+    }
+}
+
+/// Calls `edge(lower, end)` for each edge of `triangles`, in triangle order: `lower` is its
+/// lower end, `end` its higher end shifted left one bit, with its direction (whether it runs
+/// from higher to lower) in bit 0.
 #[inline(always)]
-fn by_lower_end(
-    triangles: &[[u32; 3]],
-    first: usize,
-    len: usize,
-    mut edge: impl FnMut(usize, u32),
-) {
+fn by_lower_end(triangles: &[[u32; 3]], mut edge: impl FnMut(usize, u32)) {
     for &[a, b, c] in triangles {
         for (from, to) in [(a, b), (b, c), (c, a)] {
             let (lo, hi) = (from.min(to), from.max(to));
             debug_assert!(hi < 1 << 31, "vertex ids fit in 31 bits");
-            let k = (lo as usize).wrapping_sub(first);
-            if from != to && k < len {
-                edge(k, hi << 1 | (from > to) as u32);
+            if from != to {
+                edge(lo as usize, hi << 1 | (from > to) as u32);
             }
         }
     }
@@ -520,16 +500,11 @@ mod tests {
         assert!((alone.volume.unwrap() - 1.0).abs() < 1e-9);
     }
 
-    #[test]
-    fn edges_are_counted_alike_whatever_the_number_of_vertex_ranges() {
-        // Random triangles on few vertices: shared, repeated, turned-over and degenerate edges.
-        let mut draw = draws(11);
-        let mut next = |n: u64| (draw() % n) as u32;
-        let vertices = 97;
-        let triangles: Vec<[u32; 3]> = (0..400).map(|_| [next(97), next(97), next(97)]).collect();
-        // Each undirected edge's uses, by direction, counted one triangle at a time.
+    /// Boundary, non-manifold and misoriented edges of `triangles`, each undirected edge's
+    /// uses counted by direction one triangle at a time.
+    fn counted_in_a_table(triangles: &[[u32; 3]]) -> (usize, usize, usize) {
         let mut uses = std::collections::HashMap::<(u32, u32), (usize, usize)>::new();
-        for &[a, b, c] in &triangles {
+        for &[a, b, c] in triangles {
             for (from, to) in [(a, b), (b, c), (c, a)] {
                 if from != to {
                     let entry = uses.entry((from.min(to), from.max(to))).or_default();
@@ -541,23 +516,60 @@ mod tests {
                 }
             }
         }
-        let count = |n: usize| uses.values().filter(|(f, b)| f + b == n).count();
+        let boundary = uses.values().filter(|(f, b)| f + b == 1).count();
+        let non_manifold = uses.values().filter(|(f, b)| f + b > 2).count();
         let misoriented = uses
             .values()
             .filter(|&&u| u == (2, 0) || u == (0, 2))
             .count();
-        let three_or_more = uses.values().filter(|(f, b)| f + b > 2).count();
-        for threads in [1, 3, 8] {
+        (boundary, non_manifold, misoriented)
+    }
+
+    /// Checks [`edge_counts`] of `triangles` on each number of `threads` against
+    /// [`counted_in_a_table`], on triangles that have boundary, non-manifold and misoriented
+    /// edges.
+    fn counted_as_in_a_table(triangles: &[[u32; 3]], vertices: usize, threads: &[usize]) {
+        let expected = counted_in_a_table(triangles);
+        for &threads in threads {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
                 .unwrap();
-            let edges = pool.install(|| edge_counts(&triangles, vertices));
-            assert_eq!(edges.boundary, count(1), "{threads} threads");
-            assert_eq!(edges.non_manifold, three_or_more, "{threads} threads");
-            assert_eq!(edges.misoriented, misoriented, "{threads} threads");
+            let edges = pool.install(|| edge_counts(triangles, vertices));
+            let counted = (edges.boundary, edges.non_manifold, edges.misoriented);
+            assert_eq!(counted, expected, "{threads} threads");
         }
-        assert!(count(1) > 0 && misoriented > 0 && count(3) > 0);
+        let (boundary, non_manifold, misoriented) = expected;
+        assert!(boundary > 0 && non_manifold > 0 && misoriented > 0);
+    }
+
+    #[test]
+    fn edges_are_counted_alike_whatever_the_number_of_runs() {
+        // Random triangles on few vertices: shared, repeated, turned-over and degenerate edges.
+        let mut draw = draws(11);
+        let mut next = |n: u64| (draw() % n) as u32;
+        let triangles: Vec<[u32; 3]> = (0..400).map(|_| [next(97), next(97), next(97)]).collect();
+        counted_as_in_a_table(&triangles, 97, &[1, 3, 8, 9]);
+    }
+
+    #[test]
+    fn vertices_counted_in_several_tasks_count_as_one_table_does() {
+        // A strip of triangles over 3.5 tasks' vertices, its second half wound the other way,
+        // a few of its triangles repeated and some corners drawn anywhere.
+        let vertices = 7 * ROW_VERTICES / 2;
+        let mut draw = draws(3);
+        let mut triangles: Vec<[u32; 3]> = (0..vertices as u32 - 2)
+            .map(|i| match i % 2 == 0 && i < vertices as u32 / 2 {
+                true => [i, i + 1, i + 2],
+                false => [i, i + 2, i + 1],
+            })
+            .collect();
+        for _ in 0..500 {
+            let k = (draw() % triangles.len() as u64) as usize;
+            triangles.push(triangles[k]);
+            triangles[k][0] = (draw() % vertices as u64) as u32;
+        }
+        counted_as_in_a_table(&triangles, vertices, &[1, 2, 5]);
     }
 
     #[test]
