@@ -21,7 +21,7 @@ pub fn run(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()
     on_pool_thread(|| report(path, up))
 }
 
-/// What [`run`] prints, worked out and printed on the calling thread.
+/// The scene or model at `path` read, built and measured, and printed.
 fn report(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()> {
     let mut cache = MeshFileCache::default();
     let (scene, base) = super::load_scene(Some(path), up, &mut cache)?;

@@ -303,9 +303,11 @@ const ROW_VERTICES: usize = 1 << 13;
 /// The edges of some triangles by lower end, as compressed rows: each edge's higher end shifted
 /// left one bit, and its direction in bit 0, so that the two uses of one edge sort side by side.
 struct RunRows {
-    /// Where each vertex's row ends in `ends` (row `v` starts where row `v - 1` ends, row 0 at 0).
+    /// Where each vertex's row ends in `edges` (row `v` starts where row `v - 1` ends, row 0
+    /// at 0).
     row_ends: Vec<u32>,
-    ends: Vec<u32>,
+    /// The rows one after another.
+    edges: Vec<u32>,
 }
 
 impl RunRows {
@@ -318,18 +320,18 @@ impl RunRows {
         for row in &mut row_ends {
             (*row, at) = (at, at + *row);
         }
-        let mut ends = vec![0u32; at as usize];
+        let mut edges = vec![0u32; at as usize];
         by_lower_end(triangles, |lower, end| {
-            ends[row_ends[lower] as usize] = end;
+            edges[row_ends[lower] as usize] = end;
             row_ends[lower] += 1;
         });
-        RunRows { row_ends, ends }
+        RunRows { row_ends, edges }
     }
 
     /// The edges whose lower end is vertex `v`.
     fn row(&self, v: usize) -> &[u32] {
         let start = if v == 0 { 0 } else { self.row_ends[v - 1] };
-        &self.ends[start as usize..self.row_ends[v] as usize]
+        &self.edges[start as usize..self.row_ends[v] as usize]
     }
 }
 
