@@ -97,7 +97,10 @@ impl Measurements {
 /// Triangles summed as one piece, in order: partial sums of fixed pieces added in order make
 /// the totals the same whatever the number of threads. Small enough that a mesh of a hundred
 /// thousand triangles (the Stanford bunny's 69,451) is shared among the cores: pieces of 65,536
-/// left it to one.
+/// left it to one. Each piece is a task of its own (`with_max_len(1)`), here and for the edge
+/// count's vertices: rayon would otherwise cut the pieces into one half a thread, and a thread
+/// that woke late (on a 2-core virtual machine, often) found its half already taken by the
+/// other, which then did all the work.
 const PIECE: usize = 1 << 13;
 
 /// Measures the triangles of `parts` (each a position list and triangles indexing it) as one
@@ -114,6 +117,7 @@ pub fn measure(parts: &[(&[Vec3], &[[u32; 3]])]) -> Measurements {
     for (part_positions, triangles) in parts {
         let pieces: Vec<(Measurements, f64)> = triangles
             .par_chunks(PIECE)
+            .with_max_len(1)
             .map(|piece| measure_piece(part_positions, piece))
             .collect();
         for (piece, six_volume) in pieces {
@@ -275,6 +279,7 @@ fn edge_counts(triangles: &[[u32; 3]], vertices: usize) -> EdgeCounts {
         .collect();
     (0..vertices.div_ceil(ROW_VERTICES))
         .into_par_iter()
+        .with_max_len(1)
         .map(|k| {
             let mut counts = EdgeCounts::default();
             let mut row = Vec::with_capacity(SHORT_ROW);

@@ -169,7 +169,13 @@ impl Statements {
     /// and adds them in order. An error names its line.
     fn read_lines(&mut self, text: &[u8], block: usize) -> Result<(), (usize, ObjProblem)> {
         let pieces = pieces(text, (text.len() / PIECES).max(MIN_PIECE.min(block)));
-        let counts: Vec<Counts> = pieces.par_iter().map(|p| count_statements(p)).collect();
+        // One task a piece: rayon would otherwise cut the pieces into one half a thread, and a
+        // thread that woke late found its half already taken by the other.
+        let counts: Vec<Counts> = pieces
+            .par_iter()
+            .with_max_len(1)
+            .map(|p| count_statements(p))
+            .collect();
         let mut before = Vec::with_capacity(pieces.len());
         let mut so_far = Counts {
             triangles: 0,
@@ -181,6 +187,7 @@ impl Statements {
         }
         let read: Vec<Result<Piece, (usize, ObjProblem)>> = pieces
             .par_iter()
+            .with_max_len(1)
             .zip(&before)
             .zip(&counts)
             .map(|((text, &before), &holds)| read_piece(text, before, holds))
