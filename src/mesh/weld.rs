@@ -320,19 +320,10 @@ pub fn weld_used<T: Copy + Send + Sync, const N: usize>(
     })
 }
 
-/// As [`weld_used`], for `triangles` that use every vertex (a triangle soup's corners, as an
-/// ASCII STL gives them): no pass to find the used ones.
-pub fn weld_all<T: Copy + Send + Sync, const N: usize>(
-    vertices: Vec<T>,
-    key: impl Fn(&T) -> [u32; N] + Sync,
-    triangles: Vec<[u32; 3]>,
-    repeats: Repeats,
-) -> Indexed<T> {
-    weld_where(vertices, key, triangles, repeats, |_| true)
-}
-
-/// [`weld_used`] with vertex `i` used where `used(i)`.
-fn weld_where<T: Copy + Send + Sync, const N: usize>(
+/// As [`weld_used`], with vertex `i` used where `used(i)`: a caller that knows which vertices
+/// its triangles use says so and saves the pass that finds them (an ASCII STL's corners, each a
+/// triangle's, pass `|_| true`).
+pub fn weld_where<T: Copy + Send + Sync, const N: usize>(
     vertices: Vec<T>,
     key: impl Fn(&T) -> [u32; N] + Sync,
     mut triangles: Vec<[u32; 3]>,
@@ -460,7 +451,7 @@ mod tests {
             .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
             .collect();
         for repeats in [Repeats::Near, Repeats::Rare] {
-            let all = weld_all(keys.clone(), |k| *k, triangles.clone(), repeats);
+            let all = weld_where(keys.clone(), |k| *k, triangles.clone(), repeats, |_| true);
             let used = weld_used(keys.clone(), |k| *k, triangles.clone(), repeats);
             assert_eq!(all.0.len(), 1_000, "{repeats:?}");
             assert_eq!(all, used, "{repeats:?}");

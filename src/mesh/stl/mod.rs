@@ -23,7 +23,7 @@ use super::byte_source::ByteSource;
 use super::geometry::ModelGeometry;
 use super::model_error::{Place, grew};
 use super::model_format::{binary_stl_size, is_ascii_stl};
-use super::weld::{Repeats, positions_of, weld_all};
+use super::weld::{Repeats, positions_of, weld_where};
 use crate::memory_budget::triangle_cap;
 
 /// How an STL file was written.
@@ -80,7 +80,7 @@ pub fn load_stl(path: &Path) -> Result<StlModel, StlError> {
         let mut reader = BufReader::with_capacity(1 << 16, &mut source);
         let (corners, triangles) = ascii::read_solids(&mut reader, triangle_cap()).map_err(fail)?;
         // Every corner read is a triangle's: all are used.
-        let (keys, triangles) = weld_all(corners, |k| *k, triangles, Repeats::Near);
+        let (keys, triangles) = weld_where(corners, |k| *k, triangles, Repeats::Near, |_| true);
         (positions_of(&keys), triangles, StlEncoding::Ascii)
     } else if size < 84 {
         return Err(fail((Place::File, StlProblem::TooShort { size })));
