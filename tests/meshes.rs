@@ -229,6 +229,13 @@ fn obj_errors_name_the_file_and_line() {
     assert!(matches!(e.problem, ObjProblem::Malformed(_)), "{m}");
     assert_eq!(e.line, Some(2), "{m}");
 
+    // A face continued on the next line is refused on its first line, saying so.
+    let (e, m) = obj_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \\\n  3\n");
+    assert_eq!(e.line, Some(4), "{m}");
+    assert!(m.contains("after `\\`"), "{m}");
+    let (_, m) = obj_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
+    assert!(m.contains("a face corner is"), "{m}");
+
     let (e, m) = obj_error("v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
     assert!(
         matches!(e.problem, ObjProblem::NonFiniteVertex { vertex: 3 }),

@@ -93,6 +93,12 @@ struct Corner {
 /// What a malformed face corner should have been.
 const CORNER_FORMS: &str = "a face corner is `v`, `v/vt`, `v//vn` or `v/vt/vn`";
 
+/// What a face that goes on after a `\` at the end of its line gets: a line continued with a
+/// backslash, as the OBJ specification allows and exporters almost never write, is not read
+/// (neither tobj nor rapidobj reads it either).
+const CONTINUED_LINE: &str =
+    "a face continues on the next line after `\\`, which rastray does not read: join the lines";
+
 /// Whether `b` is white space as `char::is_whitespace` has it among ASCII characters.
 #[inline]
 fn is_space(b: u8) -> bool {
@@ -353,7 +359,10 @@ impl PieceReader {
         let positions = self.before.positions + piece.positions.len();
         for word in words {
             let (vertex, rest) = split_slash(word);
-            let vertex = parse_index(vertex).ok_or(ObjProblem::Malformed(CORNER_FORMS))?;
+            let vertex = parse_index(vertex).ok_or(ObjProblem::Malformed(match word {
+                "\\" => CONTINUED_LINE,
+                _ => CORNER_FORMS,
+            }))?;
             let (uv, rest) = rest.map_or(("", None), split_slash);
             let (normal, _) = rest.map_or(("", None), split_slash);
             // An index as written, resolved; `None` when absent, `Some(NONE)` when it names
