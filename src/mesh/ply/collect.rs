@@ -71,9 +71,10 @@ impl Collector {
         )
     }
 
-    /// Takes the vertices of `run`, the next in the file.
-    pub fn vertices(&mut self, run: VertexColumns) {
-        self.columns.append(run);
+    /// Takes the vertices of `runs`, the next in the file, each but the last of `RUN` vertices
+    /// (a power of two).
+    pub fn vertex_runs<const RUN: usize>(&mut self, runs: &[VertexColumns]) {
+        self.columns.append_runs::<RUN>(runs);
     }
 
     /// Takes one face's vertex indices, fanned into triangles (a face of fewer than three
@@ -139,7 +140,8 @@ impl Collector {
     ) -> Result<usize, E> {
         debug_assert!(n as u64 <= self.triangle_room() && self.face_uvs.is_none());
         let start = self.triangles.len();
-        self.triangles.resize(start + n, [0; 3]);
+        // Made on every core: the first touch of the room's pages is most of the cost.
+        self.triangles.par_extend(rayon::iter::repeat_n([0; 3], n));
         let run = FaceRun {
             first: self.faces + 1,
             vertices: self.vertices,
@@ -161,10 +163,10 @@ impl Collector {
         let corner = |values: &[Vec2], t: &[u32; 3]| t.map(|i| values[i as usize]);
         let flip = |uv: Vec2| Vec2::new(uv.x, 1.0 - uv.y);
         let corner_uvs = match (&self.face_uvs, &self.columns.uvs) {
-            (Some(face_uvs), _) => Some(face_uvs.iter().map(|t| t.map(flip)).collect()),
+            (Some(face_uvs), _) => Some(face_uvs.par_iter().map(|t| t.map(flip)).collect()),
             (None, Some(uvs)) => Some(
                 self.triangles
-                    .iter()
+                    .par_iter()
                     .map(|t| corner(uvs, t).map(flip))
                     .collect(),
             ),
@@ -172,7 +174,7 @@ impl Collector {
         };
         let corner_normals = self.columns.normals.as_ref().map(|normals| {
             self.triangles
-                .iter()
+                .par_iter()
                 .map(|t| t.map(|i| normals[i as usize]))
                 .collect()
         });
@@ -189,8 +191,8 @@ impl Collector {
                     })
                     .collect();
                 let (keys, triangles) = weld_used(keys, |k| *k, self.triangles, Repeats::Rare);
-                let positions = keys.iter().map(|k| from_bits(&k[..3])).collect();
-                let colors = keys.iter().map(|k| from_bits(&k[3..])).collect();
+                let positions = keys.par_iter().map(|k| from_bits(&k[..3])).collect();
+                let colors = keys.par_iter().map(|k| from_bits(&k[3..])).collect();
                 (positions, Some(colors), triangles)
             }
             None => {

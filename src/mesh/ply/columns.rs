@@ -3,6 +3,7 @@
 //! appended in file order equal the run read at once.
 
 use glam::{Vec2, Vec3};
+use rayon::prelude::*;
 
 use super::error::PlyProblem;
 use super::plan::{NX, RED, SLOTS, U, VertexAttributes, X};
@@ -99,21 +100,127 @@ impl VertexColumns {
         Ok(())
     }
 
-    /// Appends `next`, the run that follows this one in the file. An attribute either run has
-    /// lost (a normal that is not usable) is lost for all.
-    pub fn append(&mut self, next: VertexColumns) {
-        debug_assert_eq!(next.first, self.first + self.positions.len() as u64);
-        self.positions.extend_from_slice(&next.positions);
-        join(&mut self.normals, next.normals);
-        join(&mut self.colors, next.colors);
-        join(&mut self.uvs, next.uvs);
+    /// Appends `runs`, the runs that follow this one in the file, one after another; every run
+    /// but the last holds `RUN` vertices (a power of two). An attribute any run has lost is lost
+    /// for all. The values are copied on every core, each straight to its place.
+    pub fn append_runs<const RUN: usize>(&mut self, runs: &[VertexColumns]) {
+        debug_assert!(RUN.is_power_of_two());
+        debug_assert!(
+            runs.iter().enumerate().all(|(k, r)| {
+                let before = self.positions.len() + k * RUN;
+                r.first == self.first + before as u64
+                    && (r.positions.len() == RUN || k + 1 == runs.len())
+            }),
+            "runs follow one another, all but the last whole"
+        );
+        let positions: Vec<&[Vec3]> = runs.iter().map(|r| &r.positions[..]).collect();
+        append_parts::<Vec3, RUN>(&mut self.positions, &positions);
+        join::<_, RUN>(&mut self.normals, runs, |r| r.normals.as_deref());
+        join::<_, RUN>(&mut self.colors, runs, |r| r.colors.as_deref());
+        join::<_, RUN>(&mut self.uvs, runs, |r| r.uvs.as_deref());
     }
 }
 
-/// `ours` followed by `theirs`, or `None` when either is.
-fn join<T: Copy>(ours: &mut Option<Vec<T>>, theirs: Option<Vec<T>>) {
-    match (ours.as_mut(), theirs) {
-        (Some(ours), Some(theirs)) => ours.extend_from_slice(&theirs),
+/// `ours` followed by each run's array (`theirs`), or `None` when it or any of them is.
+fn join<T: Copy + Send + Sync, const RUN: usize>(
+    ours: &mut Option<Vec<T>>,
+    runs: &[VertexColumns],
+    theirs: impl Fn(&VertexColumns) -> Option<&[T]>,
+) {
+    let parts: Option<Vec<&[T]>> = runs.iter().map(theirs).collect();
+    match (ours.as_mut(), parts) {
+        (Some(ours), Some(parts)) => append_parts::<T, RUN>(ours, &parts),
         _ => *ours = None,
+    }
+}
+
+/// Appends `parts` to `ours` in order, each but the last `RUN` long (a power of two), on every
+/// core: item `i` of the appended values is item `i % RUN` of part `i / RUN`, an indexed
+/// iterator that rayon writes straight into `ours`'s new room: the copy and the first touch of
+/// its pages are shared out, where appending part by part kept one core busy while the others
+/// waited for the next block.
+fn append_parts<T: Copy + Send + Sync, const RUN: usize>(ours: &mut Vec<T>, parts: &[&[T]]) {
+    let total: usize = parts.iter().map(|p| p.len()).sum();
+    let shift = RUN.trailing_zeros();
+    ours.par_extend(
+        (0..total)
+            .into_par_iter()
+            .with_min_len(RUN.max(1 << 12))
+            .map(|i| parts[i >> shift][i & (RUN - 1)]),
+    );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ALL: VertexAttributes = VertexAttributes {
+        normals: true,
+        colors: Some(Scalar::U8),
+        uvs: true,
+    };
+
+    /// Vertex `i`'s values: distinct in every slot; a zero normal (not usable) at `bad_normal`.
+    fn values(i: usize, bad_normal: Option<usize>) -> [f64; SLOTS] {
+        let f = i as f64;
+        let n = if bad_normal == Some(i) { 0.0 } else { 1.0 };
+        [
+            f,
+            f + 0.5,
+            -f,
+            n,
+            0.0,
+            0.0,
+            (i % 256) as f64,
+            3.0,
+            7.0,
+            f * 0.25,
+            1.0 - f,
+        ]
+    }
+
+    /// Vertices `0..n` pushed into runs of `RUN` after `before` vertices pushed into the start,
+    /// and appended, against all of them pushed into one.
+    fn appended_and_pushed<const RUN: usize>(
+        before: usize,
+        n: usize,
+        bad_normal: Option<usize>,
+    ) -> (VertexColumns, VertexColumns) {
+        let mut whole = VertexColumns::new(1, 0, ALL);
+        for i in 0..before + n {
+            whole.push(&values(i, bad_normal), ALL.colors).unwrap();
+        }
+        let mut start = VertexColumns::new(1, 0, ALL);
+        for i in 0..before {
+            start.push(&values(i, bad_normal), ALL.colors).unwrap();
+        }
+        let runs: Vec<VertexColumns> = (before..before + n)
+            .step_by(RUN)
+            .map(|from| {
+                let mut run = VertexColumns::new(1 + from as u64, RUN, ALL);
+                for i in from..(from + RUN).min(before + n) {
+                    run.push(&values(i, bad_normal), ALL.colors).unwrap();
+                }
+                run
+            })
+            .collect();
+        start.append_runs::<RUN>(&runs);
+        (start, whole)
+    }
+
+    #[test]
+    fn runs_appended_on_every_core_equal_the_vertices_pushed_in_one() {
+        for (before, n) in [(0, 1), (0, 64), (5, 63), (3, 65), (1, 20_000), (0, 0)] {
+            let (appended, pushed) = appended_and_pushed::<64>(before, n, None);
+            assert_eq!(appended, pushed, "{before} + {n}");
+            assert!(appended.normals.is_some() && appended.uvs.is_some());
+        }
+        // A normal that is not usable, in the start or in any run, loses the normals for all.
+        for bad in [2, 10, 64 + 10, 130] {
+            let (appended, pushed) = appended_and_pushed::<64>(5, 200, Some(bad));
+            assert_eq!(appended, pushed, "bad normal at {bad}");
+            assert_eq!(appended.normals, None);
+            assert_eq!(appended.positions.len(), 205);
+        }
     }
 }

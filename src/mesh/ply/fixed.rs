@@ -131,12 +131,11 @@ pub fn read_vertices<R: Read, const BIG: bool>(
                 Ok(run)
             })
             .collect();
-        for run in runs {
-            match run {
-                Ok(run) => collector.vertices(run),
-                Err((r, problem)) => return Err((record_place(start, r, stride), problem)),
-            }
-        }
+        let runs: Vec<VertexColumns> = runs
+            .into_iter()
+            .collect::<Result<_, _>>()
+            .map_err(|(r, problem)| (record_place(start, r, stride), problem))?;
+        collector.vertex_runs::<TASK_RECORDS>(&runs);
         source.consume(n * stride);
         done += n as u64;
     }
