@@ -359,10 +359,14 @@ impl PieceReader {
         let positions = self.before.positions + piece.positions.len();
         for word in words {
             let (vertex, rest) = split_slash(word);
-            let vertex = parse_index(vertex).ok_or(ObjProblem::Malformed(match word {
-                "\\" => CONTINUED_LINE,
-                _ => CORNER_FORMS,
-            }))?;
+            // Which message, worked out only for a corner that is refused.
+            let refused = || {
+                ObjProblem::Malformed(match word {
+                    "\\" => CONTINUED_LINE,
+                    _ => CORNER_FORMS,
+                })
+            };
+            let vertex = parse_index(vertex).ok_or_else(refused)?;
             let (uv, rest) = rest.map_or(("", None), split_slash);
             let (normal, _) = rest.map_or(("", None), split_slash);
             // An index as written, resolved; `None` when absent, `Some(NONE)` when it names
