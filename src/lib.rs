@@ -31,6 +31,7 @@ pub mod atomic_file;
 pub mod bench;
 pub mod bundled_font;
 pub mod export;
+mod huge_pages;
 pub mod input_file;
 pub mod instance;
 pub mod memory_budget;

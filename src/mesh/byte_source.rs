@@ -12,6 +12,9 @@ use crate::input_file::{MAX_MODEL_BYTES, open_bounded};
 /// stay in the cache of one core.
 pub const BLOCK: usize = 1 << 18;
 
+/// A model file read forward: the source the binary readers' parallel paths take.
+pub type ModelSource = ByteSource<Take<File>>;
+
 /// A reader with a buffer that hands out contiguous slices.
 ///
 /// Invariant: `start <= end <= buf.len()`; `buf[start..end]` are the next unread bytes of the
@@ -39,51 +42,91 @@ impl ByteSource<Take<File>> {
     /// zeroed pages, never filled by hand) in pieces read in parallel, so that two cores share
     /// the copying and the page faults.
     pub fn take_vec(&mut self, n: usize) -> std::io::Result<Vec<u8>> {
-        use std::io::{Seek, SeekFrom};
-        use std::os::unix::fs::FileExt;
-
-        use rayon::prelude::*;
-
         let buffered = (self.end - self.start).min(n);
         let limit = self.reader.limit();
         let rest = ((n - buffered) as u64).min(limit) as usize;
         let mut out = vec![0u8; buffered + rest];
+        crate::huge_pages::advise(&mut out);
         out[..buffered].copy_from_slice(&self.buf[self.start..self.start + buffered]);
         self.consume(buffered);
         // All that was buffered is consumed (or nothing more is read): the file stands at
         // `offset`.
         let (file, from) = (self.reader.get_ref(), self.offset);
-        let pieces: Vec<std::io::Result<usize>> = out[buffered..]
-            .par_chunks_mut(TAKE_PIECE)
-            .enumerate()
-            .map(|(k, piece)| {
-                let mut done = 0;
-                while done < piece.len() {
-                    match file.read_at(&mut piece[done..], from + (k * TAKE_PIECE + done) as u64) {
-                        Ok(0) => break,
-                        Ok(got) => done += got,
-                        Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-                        Err(e) => return Err(e),
-                    }
-                }
-                Ok(done)
-            })
-            .collect();
-        let mut read = 0;
-        for piece in pieces {
-            let got = piece?;
-            read += got;
-            if got < TAKE_PIECE {
-                break;
-            }
-        }
+        let read = read_in_pieces(file, from, &mut out[buffered..], TAKE_PIECE)?;
         out.truncate(buffered + read);
-        self.reader.get_mut().seek(SeekFrom::Current(read as i64))?;
-        self.reader.set_limit(limit - read as u64);
+        self.advance_file(read)?;
         self.offset += read as u64;
         Ok(out)
     }
+
+    /// As [`ByteSource::ahead`], with the bytes not yet buffered read in parallel pieces, so
+    /// that two cores share the copy from the page cache: for blocks of megabytes, which a
+    /// binary reader decodes in parallel.
+    pub fn ahead_in_parallel(&mut self, min: usize) -> std::io::Result<&[u8]> {
+        if self.end - self.start < min {
+            self.buf.copy_within(self.start..self.end, 0);
+            self.end -= self.start;
+            self.start = 0;
+            if self.buf.len() < min.max(BLOCK) {
+                self.buf.resize(min.max(BLOCK), 0);
+            }
+            let want = ((min - self.end) as u64).min(self.reader.limit()) as usize;
+            // Every buffered byte has been read: the file stands just past them.
+            let from = self.offset + self.end as u64;
+            let out = &mut self.buf[self.end..self.end + want];
+            let read = read_in_pieces(self.reader.get_ref(), from, out, PARALLEL_PIECE)?;
+            self.advance_file(read)?;
+            self.end += read;
+        }
+        Ok(&self.buf[self.start..self.end])
+    }
+
+    /// Moves the file and its limit on by `read` bytes, read at their offsets.
+    fn advance_file(&mut self, read: usize) -> std::io::Result<()> {
+        use std::io::{Seek, SeekFrom};
+        self.reader.get_mut().seek(SeekFrom::Current(read as i64))?;
+        let limit = self.reader.limit();
+        self.reader.set_limit(limit - read as u64);
+        Ok(())
+    }
 }
+
+/// Reads `out` from `file` at offset `from` in pieces of `piece` bytes, read in parallel; how
+/// many bytes were read before the first piece the file's end cut short.
+fn read_in_pieces(file: &File, from: u64, out: &mut [u8], piece: usize) -> std::io::Result<usize> {
+    use std::os::unix::fs::FileExt;
+
+    use rayon::prelude::*;
+
+    let pieces: Vec<std::io::Result<usize>> = out
+        .par_chunks_mut(piece)
+        .enumerate()
+        .map(|(k, out)| {
+            let mut done = 0;
+            while done < out.len() {
+                match file.read_at(&mut out[done..], from + (k * piece + done) as u64) {
+                    Ok(0) => break,
+                    Ok(got) => done += got,
+                    Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                    Err(e) => return Err(e),
+                }
+            }
+            Ok(done)
+        })
+        .collect();
+    let mut read = 0;
+    for (k, got) in pieces.into_iter().enumerate() {
+        let got = got?;
+        read += got;
+        if got < piece.min(out.len() - k * piece) {
+            break;
+        }
+    }
+    Ok(read)
+}
+
+/// Bytes one task of [`ByteSource::ahead_in_parallel`] reads.
+const PARALLEL_PIECE: usize = 1 << 20;
 
 /// Bytes one task of [`ByteSource::take_vec`] reads.
 const TAKE_PIECE: usize = 1 << 22;

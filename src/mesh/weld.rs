@@ -11,11 +11,11 @@
 //! numbered by the place of that first one, which is their order of first sight.
 
 use std::ops::Range;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU8, Ordering};
 
 use rayon::prelude::*;
 
-use super::used_vertices::used_bits;
+use crate::huge_pages::{collected, filled};
 
 /// Keys a bucket holds on average: its keys and table stay within a core's 2 MiB cache.
 const BUCKET_KEYS: usize = 1 << 13;
@@ -75,7 +75,7 @@ pub fn weld<const N: usize, T: Copy + Default + Send>(
     let bits = (count / BUCKET_KEYS).max(1).ilog2().min(MOST_BUCKET_BITS);
     // Each key's bucket (or [`SAME`], with the earlier key it equals in `index`), and how many
     // keys of each part each bucket takes.
-    let mut buckets = vec![0u16; count];
+    let mut buckets = filled(count, 0u16);
     let counts: Vec<Vec<u32>> = buckets
         .par_chunks_mut(part)
         .zip(index.par_chunks_mut(part))
@@ -122,8 +122,8 @@ pub fn weld<const N: usize, T: Copy + Default + Send>(
             total += counts[p][b] as usize;
         }
     }
-    let mut keys = vec![[0u32; N]; total];
-    let mut at = vec![0u32; total];
+    let mut keys = filled(total, [0u32; N]);
+    let mut at = filled(total, 0u32);
     scatter(&mut keys, &mut at, &counts, &parts, &buckets, &key);
     // Each bucket's keys, welded: `at` becomes the first of each key's equals.
     let firsts = Firsts::new(count);
@@ -143,7 +143,7 @@ pub fn weld<const N: usize, T: Copy + Default + Send>(
         });
     drop(keys);
     let ranks = firsts.ranks();
-    let mut order = vec![T::default(); ranks.distinct() as usize];
+    let mut order = filled(ranks.distinct() as usize, T::default());
     let mut order_parts = Vec::with_capacity(parts.len());
     let mut order_left = &mut order[..];
     for range in &parts {
@@ -253,20 +253,33 @@ fn weld_bucket<const N: usize>(
     }
 }
 
-/// One bit a key, set for the first of each distinct key.
-struct Firsts(Vec<AtomicU64>);
+/// One flag a key, set for the first of each distinct key. A byte a key, stored without a
+/// locked instruction: buckets welded on different cores mark places scattered over the file,
+/// and a shared bit set's atomic `fetch_or` took 9% of a big PLY's load (profile of
+/// `examples/model_load`).
+struct Firsts(Vec<AtomicU8>);
 
 impl Firsts {
     fn new(count: usize) -> Firsts {
-        Firsts((0..count.div_ceil(64)).map(|_| AtomicU64::new(0)).collect())
+        Firsts(collected(
+            (0..count).into_par_iter().map(|_| AtomicU8::new(0)),
+        ))
     }
 
     fn mark(&self, i: usize) {
-        self.0[i / 64].fetch_or(1 << (i % 64), Ordering::Relaxed);
+        self.0[i].store(1, Ordering::Relaxed);
     }
 
     fn ranks(self) -> Ranks {
-        let words: Vec<u64> = self.0.into_iter().map(AtomicU64::into_inner).collect();
+        let words: Vec<u64> = self
+            .0
+            .par_chunks(64)
+            .map(|flags| {
+                flags.iter().enumerate().fold(0u64, |word, (bit, flag)| {
+                    word | u64::from(flag.load(Ordering::Relaxed)) << bit
+                })
+            })
+            .collect();
         let mut before = Vec::with_capacity(words.len() + 1);
         let mut sum = 0u32;
         for w in &words {
@@ -304,44 +317,41 @@ impl Ranks {
 /// Vertices (or their keys), and triangles as indices into them.
 pub type Indexed<T> = (Vec<T>, Vec<[u32; 3]>);
 
-/// The vertices `triangles` use with distinct keys (`key(&vertices[i])` is vertex `i`'s), in
-/// file order (each key at the place of the first used vertex that has it), and the triangles
-/// re-indexed onto them. When every vertex is used and no key repeats, both come back as they
-/// were, uncopied.
-pub fn weld_used<T: Copy + Send + Sync, const N: usize>(
+/// The vertices used (where `used(i)`) with distinct keys (`key(&vertices[i])` is vertex `i`'s),
+/// in file order (each key at the place of the first used vertex that has it), and the
+/// triangles re-indexed onto them. When every vertex is used and no key repeats, both come back
+/// as they were, uncopied. A caller that knows which vertices its triangles use says so and
+/// saves the pass that finds them (an ASCII STL's corners, each a triangle's, pass `|_| true`;
+/// others pass [`super::used_vertices::used_bits`]).
+pub fn weld_where<T: Copy + Send + Sync, const N: usize>(
     vertices: Vec<T>,
     key: impl Fn(&T) -> [u32; N] + Sync,
     triangles: Vec<[u32; 3]>,
     repeats: Repeats,
+    used: impl Fn(usize) -> bool + Sync,
 ) -> Indexed<T> {
-    let used = used_bits(&triangles, vertices.len());
-    weld_where(vertices, key, triangles, repeats, |i| {
-        used[i / 64] >> (i % 64) & 1 == 1
-    })
+    let count = vertices.len();
+    match weld_indices(count, |i| key(&vertices[i]), triangles, repeats, used) {
+        (None, triangles) => (vertices, triangles),
+        (Some(kept), triangles) => (kept_of(&vertices, &kept), triangles),
+    }
 }
 
-/// As [`weld_used`], with vertex `i` used where `used(i)`: a caller that knows which vertices
-/// its triangles use says so and saves the pass that finds them (an ASCII STL's corners, each a
-/// triangle's, pass `|_| true`).
-pub fn weld_where<T: Copy + Send + Sync, const N: usize>(
-    vertices: Vec<T>,
-    key: impl Fn(&T) -> [u32; N] + Sync,
+/// As [`weld_where`], for `count` vertices held apart (`key(i)` is vertex `i`'s key): the
+/// numbers of the vertices kept, in order (`None` when every vertex is used and no key repeats,
+/// so that nothing need be copied), and the triangles re-indexed onto them.
+pub fn weld_indices<const N: usize>(
+    count: usize,
+    key: impl Fn(usize) -> [u32; N] + Sync,
     mut triangles: Vec<[u32; 3]>,
     repeats: Repeats,
     used: impl Fn(usize) -> bool + Sync,
-) -> Indexed<T> {
-    let mut index = vec![0u32; vertices.len()];
-    let kept = weld(
-        &mut index,
-        repeats,
-        |i| key(&vertices[i]),
-        used,
-        |i| i as u32,
-    );
-    if kept.len() == vertices.len() {
-        return (vertices, triangles);
+) -> (Option<Vec<u32>>, Vec<[u32; 3]>) {
+    let mut index = filled(count, 0u32);
+    let kept = weld(&mut index, repeats, key, used, |i| i as u32);
+    if kept.len() == count {
+        return (None, triangles);
     }
-    let kept = kept.iter().map(|&i| vertices[i as usize]).collect();
     let share = triangles
         .len()
         .div_ceil(rayon::current_num_threads())
@@ -351,7 +361,12 @@ pub fn weld_where<T: Copy + Send + Sync, const N: usize>(
             *t = t.map(|i| index[i as usize]);
         }
     });
-    (kept, triangles)
+    (Some(kept), triangles)
+}
+
+/// The values of `values` at the numbers `kept`, in order.
+pub fn kept_of<T: Copy + Send + Sync>(values: &[T], kept: &[u32]) -> Vec<T> {
+    collected(kept.par_iter().map(|&i| values[i as usize]))
 }
 
 /// The positions whose coordinates have the bits `keys`.
@@ -385,6 +400,20 @@ pub fn coordinate_bits(x: f32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::used_vertices::used_bits;
+
+    /// [`weld_where`] on the vertices `triangles` use.
+    fn weld_used<T: Copy + Send + Sync, const N: usize>(
+        vertices: Vec<T>,
+        key: impl Fn(&T) -> [u32; N] + Sync,
+        triangles: Vec<[u32; 3]>,
+        repeats: Repeats,
+    ) -> Indexed<T> {
+        let used = used_bits(&triangles, vertices.len());
+        weld_where(vertices, key, triangles, repeats, |i| {
+            used[i / 64] >> (i % 64) & 1 == 1
+        })
+    }
 
     /// What one table, looked up key by key, gives.
     fn welded_one_by_one(keys: &[[u32; 3]], used: impl Fn(usize) -> bool) -> (Vec<u32>, Vec<u32>) {

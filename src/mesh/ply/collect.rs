@@ -8,11 +8,13 @@ use glam::{Vec2, Vec3};
 use super::error::PlyProblem;
 use rayon::prelude::*;
 
-use super::columns::VertexColumns;
+use super::columns::{VertexColumns, VertexRoom};
 use super::plan::{FaceLists, SLOTS, VertexAttributes};
 
+use crate::huge_pages::advise;
 use crate::mesh::ModelGeometry;
-use crate::mesh::weld::{Repeats, coordinate_bits, weld_used};
+use crate::mesh::used_vertices::used_bits;
+use crate::mesh::weld::{Repeats, kept_of, weld_indices};
 
 /// What has been read so far.
 ///
@@ -46,11 +48,13 @@ impl Collector {
         limit: u64,
     ) -> Collector {
         let n = vertices as usize;
+        let mut triangles = Vec::with_capacity(faces.min(limit) as usize);
+        advise(triangles.spare_capacity_mut());
         Collector {
             vertices,
             attributes,
             columns: VertexColumns::new(1, n, attributes),
-            triangles: Vec::with_capacity(faces.min(limit) as usize),
+            triangles,
             face_uvs: face_uvs.then(Vec::new),
             faces: 0,
             limit,
@@ -71,10 +75,14 @@ impl Collector {
         )
     }
 
-    /// Takes the vertices of `runs`, the next in the file, each but the last of `RUN` vertices
-    /// (a power of two).
-    pub fn vertex_runs<const RUN: usize>(&mut self, runs: &[VertexColumns]) {
-        self.columns.append_runs::<RUN>(runs);
+    /// Takes the next `n` vertices, written in place by `fill` (see
+    /// [`VertexColumns::fill_in_place`]); an error leaves no vertex taken.
+    pub fn fixed_vertices<E>(
+        &mut self,
+        n: usize,
+        fill: impl FnOnce(VertexRoom<'_>) -> Result<bool, E>,
+    ) -> Result<(), E> {
+        self.columns.fill_in_place(n, fill)
     }
 
     /// Takes one face's vertex indices, fanned into triangles (a face of fewer than three
@@ -179,30 +187,34 @@ impl Collector {
                 .collect()
         });
         let mut positions = self.columns.positions;
-        let (positions, colors, triangles) = match &self.columns.colors {
+        // −0 becomes 0, as `coordinate_bits` sees it.
+        positions.par_iter_mut().for_each(|p| *p += Vec3::ZERO);
+        let used = used_bits(&self.triangles, positions.len());
+        let used = |i: usize| used[i / 64] >> (i % 64) & 1 == 1;
+        let (colors, (kept, triangles)) = match self.columns.colors {
             Some(colors) => {
-                let keys = positions
-                    .par_iter()
-                    .zip(colors)
-                    .map(|(p, c)| {
-                        let [x, y, z] = p.to_array().map(coordinate_bits);
-                        let [r, g, b] = c.to_array().map(f32::to_bits);
-                        [x, y, z, r, g, b]
-                    })
-                    .collect();
-                let (keys, triangles) = weld_used(keys, |k| *k, self.triangles, Repeats::Rare);
-                let positions = keys.par_iter().map(|k| from_bits(&k[..3])).collect();
-                let colors = keys.par_iter().map(|k| from_bits(&k[3..])).collect();
-                (positions, Some(colors), triangles)
+                let key = |i: usize| {
+                    let [x, y, z] = positions[i].to_array().map(f32::to_bits);
+                    let [r, g, b] = colors[i].to_array().map(f32::to_bits);
+                    [x, y, z, r, g, b]
+                };
+                let welded =
+                    weld_indices(positions.len(), key, self.triangles, Repeats::Rare, used);
+                (Some(colors), welded)
             }
             None => {
-                // −0 becomes 0, as `coordinate_bits` sees it.
-                positions.par_iter_mut().for_each(|p| *p += Vec3::ZERO);
-                let key = |p: &Vec3| p.to_array().map(f32::to_bits);
-                let (positions, triangles) =
-                    weld_used(positions, key, self.triangles, Repeats::Rare);
-                (positions, None, triangles)
+                let key = |i: usize| positions[i].to_array().map(f32::to_bits);
+                let welded =
+                    weld_indices(positions.len(), key, self.triangles, Repeats::Rare, used);
+                (None, welded)
             }
+        };
+        let (positions, colors) = match kept {
+            None => (positions, colors),
+            Some(kept) => (
+                kept_of(&positions, &kept),
+                colors.map(|colors| kept_of(&colors, &kept)),
+            ),
         };
         Ok(ModelGeometry {
             positions,
@@ -221,13 +233,4 @@ pub struct FaceRun {
     pub first: u64,
     /// Vertices the file declares: every index must be below.
     pub vertices: u64,
-}
-
-/// The vector whose three coordinates have the bits `bits[..3]`.
-fn from_bits(bits: &[u32]) -> Vec3 {
-    Vec3::new(
-        f32::from_bits(bits[0]),
-        f32::from_bits(bits[1]),
-        f32::from_bits(bits[2]),
-    )
 }

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use super::error::PlyProblem;
 use super::plan::{NX, RED, SLOTS, U, VertexAttributes, X};
 use super::scalar::Scalar;
-use crate::mesh::srgb::{srgb_byte_to_linear, srgb_to_linear};
+use crate::mesh::srgb::{srgb_byte_table, srgb_to_linear};
 use crate::scene::limits::COORDINATE;
 
 /// The vertices of a run, in file order.
@@ -33,10 +33,10 @@ impl VertexColumns {
     pub fn new(first: u64, n: usize, attributes: VertexAttributes) -> VertexColumns {
         VertexColumns {
             first,
-            positions: Vec::with_capacity(n),
-            normals: attributes.normals.then(|| Vec::with_capacity(n)),
-            colors: attributes.colors.map(|_| Vec::with_capacity(n)),
-            uvs: attributes.uvs.then(|| Vec::with_capacity(n)),
+            positions: room(n),
+            normals: attributes.normals.then(|| room(n)),
+            colors: attributes.colors.map(|_| room(n)),
+            uvs: attributes.uvs.then(|| room(n)),
         }
     }
 
@@ -49,105 +49,221 @@ impl VertexColumns {
         colors: Option<Scalar>,
     ) -> Result<(), PlyProblem> {
         let vertex = self.first + self.positions.len() as u64;
-        let mut p = [0f32; 3];
-        for (c, out) in p.iter_mut().enumerate() {
-            let value = values[X + c];
-            let single = value as f32;
-            if !COORDINATE.accepts(single) {
-                return Err(if value.is_finite() {
-                    PlyProblem::OutOfRange {
-                        vertex,
-                        value: single,
-                    }
-                } else {
-                    PlyProblem::NonFinite { vertex }
-                });
-            }
-            *out = single;
-        }
-        self.positions.push(Vec3::from_array(p));
+        self.positions.push(position(values, vertex)?);
         if let Some(normals) = &mut self.normals {
-            let n = Vec3::new(
-                values[NX] as f32,
-                values[NX + 1] as f32,
-                values[NX + 2] as f32,
-            )
-            .normalize_or_zero();
-            if n.is_finite() && n != Vec3::ZERO {
-                normals.push(n);
-            } else {
-                self.normals = None;
+            match normal(values) {
+                Some(n) => normals.push(n),
+                None => self.normals = None,
             }
         }
         if let (Some(out), Some(ty)) = (&mut self.colors, colors) {
-            let channel = |v: f64| match ty {
-                Scalar::U8 => srgb_byte_to_linear(v as u8),
-                _ => srgb_to_linear((v / ty.full_scale()) as f32),
-            };
-            out.push(Vec3::new(
-                channel(values[RED]),
-                channel(values[RED + 1]),
-                channel(values[RED + 2]),
-            ));
+            out.push(color(values, ty));
         }
         if let Some(uvs) = &mut self.uvs {
-            let uv = Vec2::new(values[U] as f32, values[U + 1] as f32);
-            if !uv.is_finite() {
-                return Err(PlyProblem::NonFiniteUv { vertex });
-            }
-            uvs.push(uv);
+            uvs.push(uv(values, vertex)?);
         }
         Ok(())
     }
 
-    /// Appends `runs`, the runs that follow this one in the file, one after another; every run
-    /// but the last holds `RUN` vertices (a power of two). An attribute any run has lost is lost
-    /// for all. The values are copied on every core, each straight to its place.
-    pub fn append_runs<const RUN: usize>(&mut self, runs: &[VertexColumns]) {
-        debug_assert!(RUN.is_power_of_two());
-        debug_assert!(
-            runs.iter().enumerate().all(|(k, r)| {
-                let before = self.positions.len() + k * RUN;
-                r.first == self.first + before as u64
-                    && (r.positions.len() == RUN || k + 1 == runs.len())
-            }),
-            "runs follow one another, all but the last whole"
-        );
-        let positions: Vec<&[Vec3]> = runs.iter().map(|r| &r.positions[..]).collect();
-        append_parts::<Vec3, RUN>(&mut self.positions, &positions);
-        join::<_, RUN>(&mut self.normals, runs, |r| r.normals.as_deref());
-        join::<_, RUN>(&mut self.colors, runs, |r| r.colors.as_deref());
-        join::<_, RUN>(&mut self.uvs, runs, |r| r.uvs.as_deref());
+    /// Takes the next `n` vertices, written in place by `fill` (on every core, through
+    /// [`VertexRoom::split`]), which says whether every one of them has a usable normal. The
+    /// room is made on every core too, backed by huge pages where the arrays are large (made
+    /// by [`VertexColumns::new`] with room for them). An error leaves no vertex taken.
+    pub fn fill_in_place<E>(
+        &mut self,
+        n: usize,
+        fill: impl FnOnce(VertexRoom<'_>) -> Result<bool, E>,
+    ) -> Result<(), E> {
+        let start = self.positions.len();
+        let room = VertexRoom {
+            first: self.first + start as u64,
+            positions: grow(&mut self.positions, n, start),
+            normals: self.normals.as_mut().map(|v| grow(v, n, start)),
+            colors: self.colors.as_mut().map(|v| grow(v, n, start)),
+            uvs: self.uvs.as_mut().map(|v| grow(v, n, start)),
+        };
+        match fill(room) {
+            Ok(normals_kept) => {
+                if !normals_kept {
+                    self.normals = None;
+                }
+                Ok(())
+            }
+            Err(e) => {
+                self.truncate(start);
+                Err(e)
+            }
+        }
     }
 }
 
-/// `ours` followed by each run's array (`theirs`), or `None` when it or any of them is.
-fn join<T: Copy + Send + Sync, const RUN: usize>(
-    ours: &mut Option<Vec<T>>,
-    runs: &[VertexColumns],
-    theirs: impl Fn(&VertexColumns) -> Option<&[T]>,
-) {
-    let parts: Option<Vec<&[T]>> = runs.iter().map(theirs).collect();
-    match (ours.as_mut(), parts) {
-        (Some(ours), Some(parts)) => append_parts::<T, RUN>(ours, &parts),
-        _ => *ours = None,
+impl VertexColumns {
+    /// Keeps the first `n` vertices.
+    fn truncate(&mut self, n: usize) {
+        self.positions.truncate(n);
+        for values in [&mut self.normals, &mut self.colors].into_iter().flatten() {
+            values.truncate(n);
+        }
+        if let Some(uvs) = &mut self.uvs {
+            uvs.truncate(n);
+        }
     }
 }
 
-/// Appends `parts` to `ours` in order, each but the last `RUN` long (a power of two), on every
-/// core: item `i` of the appended values is item `i % RUN` of part `i / RUN`, an indexed
-/// iterator that rayon writes straight into `ours`'s new room: the copy and the first touch of
-/// its pages are shared out, where appending part by part kept one core busy while the others
-/// waited for the next block.
-fn append_parts<T: Copy + Send + Sync, const RUN: usize>(ours: &mut Vec<T>, parts: &[&[T]]) {
-    let total: usize = parts.iter().map(|p| p.len()).sum();
-    let shift = RUN.trailing_zeros();
-    ours.par_extend(
-        (0..total)
-            .into_par_iter()
-            .with_min_len(RUN.max(1 << 12))
-            .map(|i| parts[i >> shift][i & (RUN - 1)]),
-    );
+/// Room for a run of vertices in the collected arrays, written in place.
+///
+/// Invariant: the optional slices are as long as `positions` (or `None`).
+pub struct VertexRoom<'a> {
+    /// Number (from 1) of the room's first vertex, for messages.
+    first: u64,
+    positions: &'a mut [Vec3],
+    normals: Option<&'a mut [Vec3]>,
+    colors: Option<&'a mut [Vec3]>,
+    uvs: Option<&'a mut [Vec2]>,
+}
+
+impl<'a> VertexRoom<'a> {
+    /// The room cut into rooms of `len` vertices (the last may be shorter), in order.
+    pub fn split(self, len: usize) -> Vec<VertexRoom<'a>> {
+        let mut rooms = Vec::new();
+        let mut rest = self;
+        while rest.positions.len() > len {
+            let (head, tail) = rest.split_at(len);
+            rooms.push(head);
+            rest = tail;
+        }
+        rooms.push(rest);
+        rooms
+    }
+
+    fn split_at(self, mid: usize) -> (VertexRoom<'a>, VertexRoom<'a>) {
+        fn cut<T>(values: Option<&mut [T]>, mid: usize) -> (Option<&mut [T]>, Option<&mut [T]>) {
+            values.map(|v| v.split_at_mut(mid)).unzip()
+        }
+        let (positions, later_positions) = self.positions.split_at_mut(mid);
+        let (normals, later_normals) = cut(self.normals, mid);
+        let (colors, later_colors) = cut(self.colors, mid);
+        let (uvs, later_uvs) = cut(self.uvs, mid);
+        (
+            VertexRoom {
+                first: self.first,
+                positions,
+                normals,
+                colors,
+                uvs,
+            },
+            VertexRoom {
+                first: self.first + mid as u64,
+                positions: later_positions,
+                normals: later_normals,
+                colors: later_colors,
+                uvs: later_uvs,
+            },
+        )
+    }
+
+    /// Writes vertex `i` of the room from its record's values, as [`VertexColumns::push`]
+    /// takes them; whether its normal is usable (always, when the element gives none).
+    #[inline]
+    pub fn set(
+        &mut self,
+        i: usize,
+        values: &[f64; SLOTS],
+        colors: Option<Scalar>,
+    ) -> Result<bool, PlyProblem> {
+        let vertex = self.first + i as u64;
+        self.positions[i] = position(values, vertex)?;
+        let mut usable = true;
+        if let Some(normals) = &mut self.normals {
+            match normal(values) {
+                Some(n) => normals[i] = n,
+                None => usable = false,
+            }
+        }
+        if let (Some(out), Some(ty)) = (&mut self.colors, colors) {
+            out[i] = color(values, ty);
+        }
+        if let Some(uvs) = &mut self.uvs {
+            uvs[i] = uv(values, vertex)?;
+        }
+        Ok(usable)
+    }
+}
+
+/// The room for `n` more values at the end of `values` (now `start` long), made on every core.
+fn grow<T: Copy + Default + Send>(values: &mut Vec<T>, n: usize, start: usize) -> &mut [T] {
+    values.par_extend(rayon::iter::repeat_n(T::default(), n));
+    &mut values[start..]
+}
+
+/// Vertex `vertex`'s position (its number from 1, for the message), checked against the
+/// scene's coordinate limits.
+#[inline]
+fn position(values: &[f64; SLOTS], vertex: u64) -> Result<Vec3, PlyProblem> {
+    let mut p = [0f32; 3];
+    for (c, out) in p.iter_mut().enumerate() {
+        let value = values[X + c];
+        let single = value as f32;
+        if !COORDINATE.accepts(single) {
+            return Err(if value.is_finite() {
+                PlyProblem::OutOfRange {
+                    vertex,
+                    value: single,
+                }
+            } else {
+                PlyProblem::NonFinite { vertex }
+            });
+        }
+        *out = single;
+    }
+    Ok(Vec3::from_array(p))
+}
+
+/// The unit normal, when the values give a finite, non-zero one.
+#[inline]
+fn normal(values: &[f64; SLOTS]) -> Option<Vec3> {
+    let n = Vec3::new(
+        values[NX] as f32,
+        values[NX + 1] as f32,
+        values[NX + 2] as f32,
+    )
+    .normalize_or_zero();
+    (n.is_finite() && n != Vec3::ZERO).then_some(n)
+}
+
+/// The linear colour of values written as `ty`.
+#[inline]
+fn color(values: &[f64; SLOTS], ty: Scalar) -> Vec3 {
+    let [r, g, b] = [values[RED], values[RED + 1], values[RED + 2]];
+    match ty {
+        Scalar::U8 => {
+            let table = srgb_byte_table();
+            Vec3::new(
+                table[r as u8 as usize],
+                table[g as u8 as usize],
+                table[b as u8 as usize],
+            )
+        }
+        _ => Vec3::from_array([r, g, b].map(|v| srgb_to_linear((v / ty.full_scale()) as f32))),
+    }
+}
+
+/// The texture coordinates, which must be finite.
+#[inline]
+fn uv(values: &[f64; SLOTS], vertex: u64) -> Result<Vec2, PlyProblem> {
+    let uv = Vec2::new(values[U] as f32, values[U + 1] as f32);
+    if uv.is_finite() {
+        Ok(uv)
+    } else {
+        Err(PlyProblem::NonFiniteUv { vertex })
+    }
+}
+
+/// An empty vector with room for `n`, backed by huge pages where it is large.
+fn room<T>(n: usize) -> Vec<T> {
+    let mut values = Vec::with_capacity(n);
+    crate::huge_pages::advise(values.spare_capacity_mut());
+    values
 }
 
 #[cfg(test)]
@@ -179,48 +295,76 @@ mod tests {
         ]
     }
 
-    /// Vertices `0..n` pushed into runs of `RUN` after `before` vertices pushed into the start,
-    /// and appended, against all of them pushed into one.
-    fn appended_and_pushed<const RUN: usize>(
+    /// Vertices `0..n` written in place in rooms of `len` (on every core) after `before`
+    /// vertices pushed into the start, against all of them pushed one by one.
+    fn filled_and_pushed(
         before: usize,
         n: usize,
+        len: usize,
         bad_normal: Option<usize>,
     ) -> (VertexColumns, VertexColumns) {
         let mut whole = VertexColumns::new(1, 0, ALL);
         for i in 0..before + n {
             whole.push(&values(i, bad_normal), ALL.colors).unwrap();
         }
-        let mut start = VertexColumns::new(1, 0, ALL);
+        let mut filled = VertexColumns::new(1, before + n, ALL);
         for i in 0..before {
-            start.push(&values(i, bad_normal), ALL.colors).unwrap();
+            filled.push(&values(i, bad_normal), ALL.colors).unwrap();
         }
-        let runs: Vec<VertexColumns> = (before..before + n)
-            .step_by(RUN)
-            .map(|from| {
-                let mut run = VertexColumns::new(1 + from as u64, RUN, ALL);
-                for i in from..(from + RUN).min(before + n) {
-                    run.push(&values(i, bad_normal), ALL.colors).unwrap();
-                }
-                run
+        filled
+            .fill_in_place(n, |room| {
+                let kept: Result<Vec<bool>, PlyProblem> = room
+                    .split(len)
+                    .into_par_iter()
+                    .enumerate()
+                    .map(|(k, mut room)| {
+                        let mut kept = true;
+                        for i in 0..len.min(n - k * len) {
+                            let v = values(before + k * len + i, bad_normal);
+                            kept &= room.set(i, &v, ALL.colors)?;
+                        }
+                        Ok(kept)
+                    })
+                    .collect();
+                kept.map(|k| k.iter().all(|&kept| kept))
             })
-            .collect();
-        start.append_runs::<RUN>(&runs);
-        (start, whole)
+            .unwrap();
+        (filled, whole)
     }
 
     #[test]
-    fn runs_appended_on_every_core_equal_the_vertices_pushed_in_one() {
+    fn rooms_filled_on_every_core_equal_the_vertices_pushed_one_by_one() {
         for (before, n) in [(0, 1), (0, 64), (5, 63), (3, 65), (1, 20_000), (0, 0)] {
-            let (appended, pushed) = appended_and_pushed::<64>(before, n, None);
-            assert_eq!(appended, pushed, "{before} + {n}");
-            assert!(appended.normals.is_some() && appended.uvs.is_some());
+            let (filled, pushed) = filled_and_pushed(before, n, 64, None);
+            assert_eq!(filled, pushed, "{before} + {n}");
+            assert!(filled.normals.is_some() && filled.uvs.is_some());
         }
-        // A normal that is not usable, in the start or in any run, loses the normals for all.
+        // A normal that is not usable, in the start or in any room, loses the normals for all.
         for bad in [2, 10, 64 + 10, 130] {
-            let (appended, pushed) = appended_and_pushed::<64>(5, 200, Some(bad));
-            assert_eq!(appended, pushed, "bad normal at {bad}");
-            assert_eq!(appended.normals, None);
-            assert_eq!(appended.positions.len(), 205);
+            let (filled, pushed) = filled_and_pushed(5, 200, 64, Some(bad));
+            assert_eq!(filled, pushed, "bad normal at {bad}");
+            assert_eq!(filled.normals, None);
+            assert_eq!(filled.positions.len(), 205);
         }
+    }
+
+    #[test]
+    fn a_vertex_refused_in_a_room_names_itself_and_leaves_no_vertex_taken() {
+        let mut columns = VertexColumns::new(1, 0, ALL);
+        columns.push(&values(0, None), ALL.colors).unwrap();
+        let before = columns.clone();
+        let refused = columns.fill_in_place(100, |room| {
+            let mut rooms = room.split(30);
+            assert_eq!(rooms.len(), 4);
+            let mut bad = values(70, None);
+            bad[X + 1] = f64::NAN;
+            rooms[2].set(10, &bad, ALL.colors)
+        });
+        // Vertex 72 from 1: one pushed, then room 2 begins at the room's vertex 60.
+        assert!(
+            matches!(refused, Err(PlyProblem::NonFinite { vertex: 72 })),
+            "{refused:?}"
+        );
+        assert_eq!(columns, before);
     }
 }

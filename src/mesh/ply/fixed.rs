@@ -6,18 +6,15 @@
 //! (a quad, a record cut short, the triangle limit reached) gets the same result and the same
 //! messages as before.
 
-use std::io::Read;
-
 use rayon::prelude::*;
 
 use super::collect::{Collector, FaceRun};
-use super::columns::VertexColumns;
 use super::error::PlyProblem;
 use super::header::PropertyType;
 use super::plan::{Plan, SLOTS, Target};
 use super::scalar::Scalar;
 use crate::mesh::Place;
-use crate::mesh::byte_source::ByteSource;
+use crate::mesh::byte_source::ModelSource;
 
 /// Bytes of records read ahead and decoded together (about 16 ms of a core's work).
 const BLOCK_BYTES: usize = 4 << 20;
@@ -97,8 +94,8 @@ impl FaceLayout {
 
 /// Reads vertex records `0..count` of the element that begins at the source's position while
 /// they are whole; how many are read. Errors as the general reader's: the vertex's number and its record's offset.
-pub fn read_vertices<R: Read, const BIG: bool>(
-    source: &mut ByteSource<R>,
+pub fn read_vertices<const BIG: bool>(
+    source: &mut ModelSource,
     count: u64,
     layout: &VertexLayout,
     collector: &mut Collector,
@@ -112,30 +109,33 @@ pub fn read_vertices<R: Read, const BIG: bool>(
         if n == 0 {
             break;
         }
-        let (first, attributes) = collector.next_vertex();
-        let runs: Vec<Result<VertexColumns, (usize, PlyProblem)>> = block
-            .par_chunks(TASK_RECORDS * stride)
-            .enumerate()
-            .map(|(task, bytes)| {
-                let base = task * TASK_RECORDS;
-                let mut run =
-                    VertexColumns::new(first + base as u64, bytes.len() / stride, attributes);
-                let mut values = [0f64; SLOTS];
-                for (r, record) in bytes.chunks_exact(stride).enumerate() {
-                    for &(offset, ty, slot) in &layout.fields {
-                        values[slot] = ty.read::<BIG>(&record[offset..]);
-                    }
-                    run.push(&values, attributes.colors)
-                        .map_err(|problem| (base + r, problem))?;
-                }
-                Ok(run)
+        let (_, attributes) = collector.next_vertex();
+        collector
+            .fixed_vertices(n, |room| {
+                let tasks: Vec<Result<bool, (usize, PlyProblem)>> = block
+                    .par_chunks(TASK_RECORDS * stride)
+                    .zip(room.split(TASK_RECORDS))
+                    .enumerate()
+                    .map(|(task, (bytes, mut room))| {
+                        let base = task * TASK_RECORDS;
+                        let mut values = [0f64; SLOTS];
+                        let mut normals_kept = true;
+                        for (r, record) in bytes.chunks_exact(stride).enumerate() {
+                            for &(offset, ty, slot) in &layout.fields {
+                                values[slot] = ty.read::<BIG>(&record[offset..]);
+                            }
+                            normals_kept &= room
+                                .set(r, &values, attributes.colors)
+                                .map_err(|problem| (base + r, problem))?;
+                        }
+                        Ok(normals_kept)
+                    })
+                    .collect();
+                tasks
+                    .into_iter()
+                    .try_fold(true, |all, kept| Ok(all & kept?))
             })
-            .collect();
-        let runs: Vec<VertexColumns> = runs
-            .into_iter()
-            .collect::<Result<_, _>>()
             .map_err(|(r, problem)| (record_place(start, r, stride), problem))?;
-        collector.vertex_runs::<TASK_RECORDS>(&runs);
         source.consume(n * stride);
         done += n as u64;
     }
@@ -145,8 +145,8 @@ pub fn read_vertices<R: Read, const BIG: bool>(
 /// Reads face records `0..count` of the element that begins at the source's position while
 /// they are whole triangles and the triangle limit has room; how many are read. Errors as the
 /// general reader's: an index out of range names the face and its record's offset.
-pub fn read_faces<R: Read, const BIG: bool>(
-    source: &mut ByteSource<R>,
+pub fn read_faces<const BIG: bool>(
+    source: &mut ModelSource,
     count: u64,
     layout: &FaceLayout,
     collector: &mut Collector,
@@ -213,14 +213,14 @@ pub fn read_faces<R: Read, const BIG: bool>(
 
 /// The whole records of `stride` bytes among the next `want` in `source` (fewer where the file
 /// ends), and the offset of the first: a block the fast paths decode. Nothing is consumed.
-fn whole_records<R: Read>(
-    source: &mut ByteSource<R>,
+fn whole_records(
+    source: &mut ModelSource,
     want: usize,
     stride: usize,
 ) -> Result<(u64, &[u8]), (Place, PlyProblem)> {
     let start = source.offset();
     let block = source
-        .ahead(want * stride)
+        .ahead_in_parallel(want * stride)
         .map_err(|e| (Place::File, PlyProblem::Io(e)))?;
     let whole = block.len() / stride * stride;
     Ok((start, &block[..whole.min(want * stride)]))

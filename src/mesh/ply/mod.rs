@@ -20,7 +20,7 @@ mod header;
 mod plan;
 mod scalar;
 
-use std::io::{BufReader, Read};
+use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
 pub use error::{PlyError, PlyProblem};
@@ -31,7 +31,7 @@ use self::collect::Collector;
 use self::fixed::{FaceLayout, VertexLayout};
 use self::header::{Element, Header, read_header};
 use self::plan::{Plan, face_plan, skip_plan, vertex_plan};
-use super::byte_source::ByteSource;
+use super::byte_source::{ByteSource, ModelSource};
 use super::geometry::ModelGeometry;
 use super::gltf::ImportWarning;
 use super::model_error::{Place, grew};
@@ -230,8 +230,8 @@ fn vertex_element(
 }
 
 /// Reads every element of the body in order.
-fn read_body<R: Read>(
-    source: &mut ByteSource<R>,
+fn read_body(
+    source: &mut ModelSource,
     size: u64,
     header: &Header,
     plans: Vec<(Plan, Role)>,
@@ -246,11 +246,11 @@ fn read_body<R: Read>(
         }
         PlyEncoding::BinaryLittleEndian => {
             let elements = header.elements.iter().zip(plans);
-            read_binary_body::<R, false>(source, size, elements, collector)?
+            read_binary_body::<false>(source, size, elements, collector)?
         }
         PlyEncoding::BinaryBigEndian => {
             let elements = header.elements.iter().zip(plans);
-            read_binary_body::<R, true>(source, size, elements, collector)?
+            read_binary_body::<true>(source, size, elements, collector)?
         }
     }
     Ok(())
@@ -258,23 +258,23 @@ fn read_body<R: Read>(
 
 /// Reads the `elements` of a binary body (each with its plan and role) in order (`BIG`:
 /// big-endian), each through the fast paths while they fit, then the general reader.
-fn read_binary_body<'h, R: Read, const BIG: bool>(
-    source: &mut ByteSource<R>,
+fn read_binary_body<'h, const BIG: bool>(
+    source: &mut ModelSource,
     size: u64,
     elements: impl Iterator<Item = (&'h Element, (Plan, Role))>,
     collector: &mut Collector,
 ) -> Result<(), (Place, PlyProblem)> {
     for (element, (plan, role)) in elements {
-        let first = fast_prefix::<R, BIG>(source, element, &plan, &role, collector)?;
-        binary::read_element::<R, BIG>(source, size, (element, first), &plan, role, collector)?;
+        let first = fast_prefix::<BIG>(source, element, &plan, &role, collector)?;
+        binary::read_element::<_, BIG>(source, size, (element, first), &plan, role, collector)?;
     }
     Ok(())
 }
 
 /// Reads the records of a vertex or face element that the fast paths of [`fixed`] fit, while
 /// they fit; how many are read (the general reader reads the rest).
-fn fast_prefix<R: Read, const BIG: bool>(
-    source: &mut ByteSource<R>,
+fn fast_prefix<const BIG: bool>(
+    source: &mut ModelSource,
     element: &Element,
     plan: &Plan,
     role: &Role,
@@ -282,13 +282,11 @@ fn fast_prefix<R: Read, const BIG: bool>(
 ) -> Result<u64, (Place, PlyProblem)> {
     match role {
         Role::Vertex => match VertexLayout::of(plan) {
-            Some(layout) => {
-                fixed::read_vertices::<R, BIG>(source, element.count, &layout, collector)
-            }
+            Some(layout) => fixed::read_vertices::<BIG>(source, element.count, &layout, collector),
             None => Ok(0),
         },
         Role::Face => match FaceLayout::of(plan) {
-            Some(layout) => fixed::read_faces::<R, BIG>(source, element.count, &layout, collector),
+            Some(layout) => fixed::read_faces::<BIG>(source, element.count, &layout, collector),
             None => Ok(0),
         },
         Role::Skip => Ok(0),

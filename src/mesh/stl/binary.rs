@@ -52,7 +52,7 @@ pub fn read_triangles(
             |k: usize| coordinate_bits(f32::from_le_bytes([c[k], c[k + 1], c[k + 2], c[k + 3]]));
         [bits(0), bits(4), bits(8)]
     };
-    let mut triangles = vec![[0u32; 3]; whole];
+    let mut triangles = crate::huge_pages::filled(whole, [0u32; 3]);
     let positions = weld(
         triangles.as_flattened_mut(),
         Repeats::Near,

@@ -12,8 +12,8 @@ use glam::Vec3A;
 use rayon::prelude::*;
 
 use super::bvh_prims::Prim;
-use super::huge_pages;
 use super::intersect::Triangle;
+use crate::huge_pages;
 use crate::mesh::Mesh;
 use crate::render::prefetch;
 

@@ -18,7 +18,7 @@ use super::bvh::{Bvh, Inner, MAX_TREE_DEPTH, Node};
 use super::bvh_buffer::BuildBuffer;
 use super::bvh_prims::{Extent, PartitionScratch, Prim, partition, partition_scan};
 use super::bvh_sah::{BinScratch, Binning, always_leaf};
-use super::huge_pages;
+use crate::huge_pages;
 use crate::mesh::Mesh;
 use crate::render::progress::{Cancelled, Progress};
 

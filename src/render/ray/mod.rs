@@ -12,7 +12,6 @@ mod bvh_sah;
 #[cfg(target_arch = "x86_64")]
 mod bvh_sah_avx2;
 mod half_line;
-mod huge_pages;
 mod intersect;
 mod packet;
 #[cfg(target_arch = "x86_64")]

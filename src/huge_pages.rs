@@ -1,11 +1,14 @@
-//! Large buffers of a BVH backed by 2 MiB pages where the kernel offers them (Linux transparent
-//! huge pages in `madvise` mode, the common default): one page-table entry then maps what took
-//! 512, so building a large tree takes far fewer page faults, and the walk, which reads nodes and
-//! triangles scattered over tens of megabytes, misses the TLB far less. Embree asks the same of
-//! its allocations.
+//! Large buffers backed by 2 MiB pages where the kernel offers them (Linux transparent huge
+//! pages in `madvise` mode, the common default): one page-table entry then maps what took 512.
+//! A BVH's build takes far fewer page faults, and its walk, which reads nodes and triangles
+//! scattered over tens of megabytes, misses the TLB far less; Embree asks the same of its
+//! allocations. The model loaders make their large arrays here too (an STL's body, the
+//! welder's arrays, a PLY's columns and triangles), each written on every core.
 //!
 //! Measured gain, the reason for the `unsafe` here: see [`advise`].
 #![allow(unsafe_code)]
+
+use rayon::prelude::*;
 
 /// Bytes in a huge page: only whole, aligned huge pages inside a buffer are advised.
 const HUGE_PAGE: usize = 2 << 20;
@@ -20,7 +23,11 @@ const HUGE_PAGE: usize = 2 << 20;
 /// (`bench throughput`, median of 9, four alternations) 14.5–14.7 ms with it and 14.8–15.5 ms
 /// without; the build, in a fresh process as `../shared/perf/vs-embree.sh` times it (three
 /// alternations), 170–201 ms with it and 217–230 ms without.
-pub(super) fn advise<T>(buffer: &mut [T]) {
+///
+/// Loading the 9M-triangle grid of `examples/model_load` (three rounds taking turns, best of 3
+/// each): the 450 MB binary STL 560–605 ms with 4 KiB pages and 330–363 ms with huge pages
+/// (its arrays made on every core); the 184 MB PLY 336–392 ms and 226–278 ms.
+pub(crate) fn advise<T>(buffer: &mut [T]) {
     #[cfg(target_os = "linux")]
     {
         let start = buffer.as_mut_ptr() as usize;
@@ -44,4 +51,19 @@ pub(super) fn advise<T>(buffer: &mut [T]) {
     }
     #[cfg(not(target_os = "linux"))]
     let _ = buffer;
+}
+
+/// The items of `items` in a vector backed by huge pages (see [`advise`]), written on every
+/// core: the first touch of a large buffer's pages (the kernel zeroes each one) is most of the
+/// cost of making it, and is shared out.
+pub(crate) fn collected<T: Send>(items: impl IndexedParallelIterator<Item = T>) -> Vec<T> {
+    let mut buffer = Vec::with_capacity(items.len());
+    advise(buffer.spare_capacity_mut());
+    buffer.par_extend(items);
+    buffer
+}
+
+/// `n` copies of `value`, as [`collected`] makes them.
+pub(crate) fn filled<T: Copy + Send>(n: usize, value: T) -> Vec<T> {
+    collected(rayon::iter::repeat_n(value, n))
 }
