@@ -209,7 +209,16 @@ fn binary_of_both_byte_orders_loads_as_the_ascii_text_of_the_same_mesh() {
         .chain([(40, 60, true); 8])
         .chain([(20_000, 40_000, false), (20_000, 40_000, true)]);
     for (case_number, (n_vertices, n_faces, quads)) in sizes.enumerate() {
-        let case = random_case(&mut rng, n_vertices, n_faces, quads);
+        let mut case = random_case(&mut rng, n_vertices, n_faces, quads);
+        if case_number % 2 == 1 {
+            // The plain layout scanners write (float x y z, with or without uchar colours),
+            // which the fast path decodes straight from the bytes.
+            for prop in &mut case.vertex_props {
+                if let Prop::Scalar(ty, "x" | "y" | "z") = prop {
+                    *ty = "float";
+                }
+            }
+        }
         let ascii = load(&case.write("ascii"), "fast.ply").expect("the ASCII file loads");
         for format in ["binary_little_endian", "binary_big_endian"] {
             let binary = load(&case.write(format), "fast.ply").expect("the binary file loads");

@@ -162,6 +162,28 @@ impl<'a> VertexRoom<'a> {
         )
     }
 
+    /// Writes vertex `i` of the room from a position and 8-bit sRGB colours read straight from
+    /// a record, as [`VertexRoom::set`] would from the same values; the room keeps no normals
+    /// or texture coordinates (the element gives none).
+    #[inline]
+    pub fn set_plain(
+        &mut self,
+        i: usize,
+        position: [f32; 3],
+        rgb: Option<[u8; 3]>,
+    ) -> Result<(), PlyProblem> {
+        debug_assert!(self.normals.is_none() && self.uvs.is_none());
+        let vertex = self.first + i as u64;
+        for value in position {
+            coordinate(value.into(), vertex)?;
+        }
+        self.positions[i] = Vec3::from_array(position);
+        if let (Some(out), Some(rgb)) = (&mut self.colors, rgb) {
+            out[i] = byte_color(rgb);
+        }
+        Ok(())
+    }
+
     /// Writes vertex `i` of the room from its record's values, as [`VertexColumns::push`]
     /// takes them; whether its normal is usable (always, when the element gives none).
     #[inline]
@@ -202,21 +224,25 @@ fn grow<T: Copy + Default + Send>(values: &mut Vec<T>, n: usize, start: usize) -
 fn position(values: &[f64; SLOTS], vertex: u64) -> Result<Vec3, PlyProblem> {
     let mut p = [0f32; 3];
     for (c, out) in p.iter_mut().enumerate() {
-        let value = values[X + c];
-        let single = value as f32;
-        if !COORDINATE.accepts(single) {
-            return Err(if value.is_finite() {
-                PlyProblem::OutOfRange {
-                    vertex,
-                    value: single,
-                }
-            } else {
-                PlyProblem::NonFinite { vertex }
-            });
-        }
-        *out = single;
+        *out = coordinate(values[X + c], vertex)?;
     }
     Ok(Vec3::from_array(p))
+}
+
+/// A coordinate of vertex `vertex` as a single, checked against the scene's limits.
+#[inline]
+fn coordinate(value: f64, vertex: u64) -> Result<f32, PlyProblem> {
+    let single = value as f32;
+    if COORDINATE.accepts(single) {
+        Ok(single)
+    } else if value.is_finite() {
+        Err(PlyProblem::OutOfRange {
+            vertex,
+            value: single,
+        })
+    } else {
+        Err(PlyProblem::NonFinite { vertex })
+    }
 }
 
 /// The unit normal, when the values give a finite, non-zero one.
@@ -236,16 +262,16 @@ fn normal(values: &[f64; SLOTS]) -> Option<Vec3> {
 fn color(values: &[f64; SLOTS], ty: Scalar) -> Vec3 {
     let [r, g, b] = [values[RED], values[RED + 1], values[RED + 2]];
     match ty {
-        Scalar::U8 => {
-            let table = srgb_byte_table();
-            Vec3::new(
-                table[r as u8 as usize],
-                table[g as u8 as usize],
-                table[b as u8 as usize],
-            )
-        }
+        Scalar::U8 => byte_color([r as u8, g as u8, b as u8]),
         _ => Vec3::from_array([r, g, b].map(|v| srgb_to_linear((v / ty.full_scale()) as f32))),
     }
+}
+
+/// The linear colour of 8-bit sRGB codes.
+#[inline]
+fn byte_color(rgb: [u8; 3]) -> Vec3 {
+    let table = srgb_byte_table();
+    Vec3::from_array(rgb.map(|code| table[code as usize]))
 }
 
 /// The texture coordinates, which must be finite.
