@@ -67,12 +67,9 @@ impl Collector {
         self.columns.push(values, self.attributes.colors)
     }
 
-    /// Number (from 1) of the next vertex, and what the vertex element gives.
-    pub fn next_vertex(&self) -> (u64, VertexAttributes) {
-        (
-            self.columns.first + self.columns.positions.len() as u64,
-            self.attributes,
-        )
+    /// What the vertex element gives.
+    pub fn attributes(&self) -> VertexAttributes {
+        self.attributes
     }
 
     /// Takes the next `n` vertices, written in place by `fill` (see

@@ -164,6 +164,8 @@ pub fn read_vertices<const BIG: bool>(
     collector: &mut Collector,
 ) -> Result<u64, (Place, PlyProblem)> {
     let stride = layout.stride;
+    let attributes = collector.attributes();
+    let plain = PlainLayout::of(layout, attributes.colors);
     let mut done = 0;
     while done < count && stride > 0 {
         let want = (count - done).min((BLOCK_BYTES / stride).max(1) as u64) as usize;
@@ -172,8 +174,6 @@ pub fn read_vertices<const BIG: bool>(
         if n == 0 {
             break;
         }
-        let (_, attributes) = collector.next_vertex();
-        let plain = PlainLayout::of(layout, attributes.colors);
         collector
             .fixed_vertices(n, |room| {
                 let tasks: Vec<Result<bool, (usize, PlyProblem)>> = block
