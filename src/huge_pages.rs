@@ -53,12 +53,18 @@ pub(crate) fn advise<T>(buffer: &mut [T]) {
     let _ = buffer;
 }
 
-/// The items of `items` in a vector backed by huge pages (see [`advise`]), written on every
-/// core: the first touch of a large buffer's pages (the kernel zeroes each one) is most of the
-/// cost of making it, and is shared out.
-pub(crate) fn collected<T: Send>(items: impl IndexedParallelIterator<Item = T>) -> Vec<T> {
-    let mut buffer = Vec::with_capacity(items.len());
+/// An empty vector with room for `n` values, the room backed by huge pages (see [`advise`]).
+pub(crate) fn with_capacity<T>(n: usize) -> Vec<T> {
+    let mut buffer = Vec::with_capacity(n);
     advise(buffer.spare_capacity_mut());
+    buffer
+}
+
+/// The items of `items` in a vector backed by huge pages, written on every core: the first
+/// touch of a large buffer's pages (the kernel zeroes each one) is most of the cost of making
+/// it, and is shared out.
+pub(crate) fn collected<T: Send>(items: impl IndexedParallelIterator<Item = T>) -> Vec<T> {
+    let mut buffer = with_capacity(items.len());
     buffer.par_extend(items);
     buffer
 }
@@ -66,4 +72,12 @@ pub(crate) fn collected<T: Send>(items: impl IndexedParallelIterator<Item = T>) 
 /// `n` copies of `value`, as [`collected`] makes them.
 pub(crate) fn filled<T: Copy + Send>(n: usize, value: T) -> Vec<T> {
     collected(rayon::iter::repeat_n(value, n))
+}
+
+/// Appends `n` copies of `value` to `values`, written on every core (into the room it has,
+/// such as [`with_capacity`] makes), and returns them to be overwritten in place.
+pub(crate) fn extend_filled<T: Copy + Send>(values: &mut Vec<T>, n: usize, value: T) -> &mut [T] {
+    let start = values.len();
+    values.par_extend(rayon::iter::repeat_n(value, n));
+    &mut values[start..]
 }

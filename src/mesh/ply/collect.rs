@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use super::columns::{VertexColumns, VertexRoom};
 use super::plan::{FaceLists, SLOTS, VertexAttributes};
 
-use crate::huge_pages::advise;
+use crate::huge_pages;
 use crate::mesh::ModelGeometry;
 use crate::mesh::used_vertices::used_bits;
 use crate::mesh::weld::{Repeats, kept_of, weld_indices};
@@ -48,13 +48,11 @@ impl Collector {
         limit: u64,
     ) -> Collector {
         let n = vertices as usize;
-        let mut triangles = Vec::with_capacity(faces.min(limit) as usize);
-        advise(triangles.spare_capacity_mut());
         Collector {
             vertices,
             attributes,
             columns: VertexColumns::new(1, n, attributes),
-            triangles,
+            triangles: huge_pages::with_capacity(faces.min(limit) as usize),
             face_uvs: face_uvs.then(Vec::new),
             faces: 0,
             limit,
@@ -145,13 +143,14 @@ impl Collector {
     ) -> Result<usize, E> {
         debug_assert!(n as u64 <= self.triangle_room() && self.face_uvs.is_none());
         let start = self.triangles.len();
-        // Made on every core: the first touch of the room's pages is most of the cost.
-        self.triangles.par_extend(rayon::iter::repeat_n([0; 3], n));
         let run = FaceRun {
             first: self.faces + 1,
             vertices: self.vertices,
         };
-        let kept = fill(&mut self.triangles[start..], run);
+        let kept = fill(
+            huge_pages::extend_filled(&mut self.triangles, n, [0; 3]),
+            run,
+        );
         self.triangles
             .truncate(start + *kept.as_ref().unwrap_or(&0));
         if let Ok(kept) = kept {

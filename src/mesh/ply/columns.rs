@@ -1,13 +1,14 @@
 //! The values of a run of PLY vertices, one array an attribute: positions, and the normals,
-//! colours and texture coordinates the vertex element gives. Runs read apart (in parallel) and
-//! appended in file order equal the run read at once.
+//! colours and texture coordinates the vertex element gives. A block of vertices is written in
+//! place, on every core, through rooms split from the arrays' new room, and equals the same
+//! vertices pushed one by one.
 
 use glam::{Vec2, Vec3};
-use rayon::prelude::*;
 
 use super::error::PlyProblem;
 use super::plan::{NX, RED, SLOTS, U, VertexAttributes, X};
 use super::scalar::Scalar;
+use crate::huge_pages::{extend_filled, with_capacity};
 use crate::mesh::srgb::{srgb_byte_table, srgb_to_linear};
 use crate::scene::limits::COORDINATE;
 
@@ -33,10 +34,10 @@ impl VertexColumns {
     pub fn new(first: u64, n: usize, attributes: VertexAttributes) -> VertexColumns {
         VertexColumns {
             first,
-            positions: room(n),
-            normals: attributes.normals.then(|| room(n)),
-            colors: attributes.colors.map(|_| room(n)),
-            uvs: attributes.uvs.then(|| room(n)),
+            positions: with_capacity(n),
+            normals: attributes.normals.then(|| with_capacity(n)),
+            colors: attributes.colors.map(|_| with_capacity(n)),
+            uvs: attributes.uvs.then(|| with_capacity(n)),
         }
     }
 
@@ -77,10 +78,16 @@ impl VertexColumns {
         let start = self.positions.len();
         let room = VertexRoom {
             first: self.first + start as u64,
-            positions: grow(&mut self.positions, n, start),
-            normals: self.normals.as_mut().map(|v| grow(v, n, start)),
-            colors: self.colors.as_mut().map(|v| grow(v, n, start)),
-            uvs: self.uvs.as_mut().map(|v| grow(v, n, start)),
+            positions: extend_filled(&mut self.positions, n, Vec3::ZERO),
+            normals: self
+                .normals
+                .as_mut()
+                .map(|v| extend_filled(v, n, Vec3::ZERO)),
+            colors: self
+                .colors
+                .as_mut()
+                .map(|v| extend_filled(v, n, Vec3::ZERO)),
+            uvs: self.uvs.as_mut().map(|v| extend_filled(v, n, Vec2::ZERO)),
         };
         match fill(room) {
             Ok(normals_kept) => {
@@ -95,9 +102,7 @@ impl VertexColumns {
             }
         }
     }
-}
 
-impl VertexColumns {
     /// Keeps the first `n` vertices.
     fn truncate(&mut self, n: usize) {
         self.positions.truncate(n);
@@ -212,12 +217,6 @@ impl<'a> VertexRoom<'a> {
     }
 }
 
-/// The room for `n` more values at the end of `values` (now `start` long), made on every core.
-fn grow<T: Copy + Default + Send>(values: &mut Vec<T>, n: usize, start: usize) -> &mut [T] {
-    values.par_extend(rayon::iter::repeat_n(T::default(), n));
-    &mut values[start..]
-}
-
 /// Vertex `vertex`'s position (its number from 1, for the message), checked against the
 /// scene's coordinate limits.
 #[inline]
@@ -285,15 +284,10 @@ fn uv(values: &[f64; SLOTS], vertex: u64) -> Result<Vec2, PlyProblem> {
     }
 }
 
-/// An empty vector with room for `n`, backed by huge pages where it is large.
-fn room<T>(n: usize) -> Vec<T> {
-    let mut values = Vec::with_capacity(n);
-    crate::huge_pages::advise(values.spare_capacity_mut());
-    values
-}
-
 #[cfg(test)]
 mod tests {
+    use rayon::prelude::*;
+
     use super::*;
 
     const ALL: VertexAttributes = VertexAttributes {

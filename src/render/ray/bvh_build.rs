@@ -80,8 +80,7 @@ fn join_runs(runs: &[Vec<Inner>]) -> Vec<Inner> {
         total += run.len();
     }
     starts.push(total);
-    let mut joined = Vec::with_capacity(total);
-    huge_pages::advise(joined.spare_capacity_mut());
+    let mut joined = huge_pages::with_capacity(total);
     (0..total)
         .into_par_iter()
         .with_min_len(PASS_CHUNK)
