@@ -21,6 +21,7 @@ mod obj_model;
 mod obj_number;
 mod obj_piece;
 mod patch;
+mod piece_room;
 mod placed_shape;
 pub mod ply;
 mod prism;

@@ -3,7 +3,8 @@
 //! remembers which material each triangle uses. The file is read a block of a few megabytes at
 //! a time; each block's whole lines are cut into pieces read on all cores
 //! ([`super::obj_piece`]) and joined in order, so indices, errors and materials are as one
-//! reader going line by line would find them. The next block is read ([`super::line_blocks`])
+//! reader going line by line would find them; the pieces write their positions and triangles
+//! straight into the file's arrays ([`super::piece_room`]). The next block is read ([`super::line_blocks`])
 //! while one is parsed. Nothing else of the file is kept, so loading
 //! takes about the memory of the result and a block: 12 bytes a vertex and 12 a triangle (36
 //! more a triangle when the file gives normals everywhere, 24 more when it gives texture
@@ -25,7 +26,9 @@ use rayon::prelude::*;
 
 use super::obj_error::{ObjError, ObjProblem};
 use super::obj_piece::{Counts, Piece, count_statements, read_piece};
+use super::piece_room::{Filled, join_rooms};
 use super::used_vertices::drop_unused;
+use crate::huge_pages::extend_filled;
 use crate::input_file::{MAX_MODEL_BYTES, open_bounded, read_bounded};
 
 /// What a model file is called in refusals.
@@ -185,36 +188,68 @@ impl Statements {
             before.push(so_far);
             so_far = so_far.then(*c);
         }
+        let limit = crate::memory_budget::triangle_cap();
+        let holds = counts.iter().fold(Counts::default(), |a, &b| a.then(b));
+        self.reserve(holds, limit);
+        // Each piece's room in the file's arrays, as long as its counts say (its faces' first
+        // triangles, as far as the triangle limit allows), written as the pieces are read.
+        let mut positions = std::mem::take(&mut self.positions);
+        let mut triangles = std::mem::take(&mut self.triangles);
+        let (positions_start, triangles_start) = (positions.len(), triangles.len());
+        let triangle_room = holds
+            .faces
+            .min((limit as usize).saturating_sub(triangles_start));
+        let position_rooms = rooms(
+            extend_filled(&mut positions, holds.positions, Vec3::ZERO),
+            counts.iter().map(|c| c.positions),
+        );
+        let triangle_rooms = rooms(
+            extend_filled(&mut triangles, triangle_room, [0; 3]),
+            counts.iter().map(|c| c.faces),
+        );
         let read: Vec<Result<Piece, (usize, ObjProblem)>> = pieces
             .par_iter()
             .with_max_len(1)
             .zip(&before)
             .zip(&counts)
-            .map(|((text, &before), &holds)| read_piece(text, before, holds))
+            .zip(position_rooms.into_par_iter().zip(triangle_rooms))
+            .map(|(((text, &before), &holds), (positions, triangles))| {
+                read_piece(text, before, holds, positions, triangles)
+            })
             .collect();
-        let limit = crate::memory_budget::triangle_cap();
-        let holds = counts.iter().fold(Counts::default(), |a, &b| a.then(b));
-        self.reserve(holds, limit);
+        let mut filled_positions = Vec::with_capacity(read.len());
+        let mut filled_triangles = Vec::with_capacity(read.len());
+        let mut triangles_read = triangles_start;
         for (((piece, text), before), holds) in
             read.into_iter().zip(&pieces).zip(before).zip(counts)
         {
             let piece = match piece {
-                Ok(piece) if (self.triangles.len() + piece.triangles.len()) as u64 <= limit => {
-                    piece
-                }
-                // Read again knowing the triangles before: the file may pass the triangle
-                // limit there, before the piece's own error or without one.
-                _ => read_piece(
-                    text,
-                    Counts {
-                        triangles: self.triangles.len(),
+                Ok(piece) if (triangles_read + piece.triangles.len()) as u64 <= limit => piece,
+                // Read again knowing the triangles before: the file passes the triangle limit
+                // there, before the piece's own error or without one. The piece was refused
+                // or went past the limit, so this reading is refused too.
+                _ => {
+                    let before = Counts {
+                        triangles: triangles_read,
                         ..before
-                    },
-                    holds,
-                )?,
+                    };
+                    read_piece(text, before, holds, &mut [], &mut [])?;
+                    return Err((
+                        before.lines + holds.lines,
+                        ObjProblem::TooManyTriangles { limit },
+                    ));
+                }
             };
-            self.add(piece);
+            let start = triangles_read;
+            triangles_read += piece.triangles.len();
+            let (positions, triangles) = self.add(piece, start);
+            filled_positions.push(positions);
+            filled_triangles.push(triangles);
         }
+        join_rooms(&mut positions, positions_start, &filled_positions);
+        join_rooms(&mut triangles, triangles_start, &filled_triangles);
+        self.positions = positions;
+        self.triangles = triangles;
         self.counts = Counts {
             triangles: 0,
             ..so_far
@@ -235,10 +270,10 @@ impl Statements {
         }
     }
 
-    /// Adds a piece read after everything so far.
-    fn add(&mut self, piece: Piece) {
-        let start = self.triangles.len();
-        append(&mut self.positions, &piece.positions);
+    /// Adds a piece read after everything so far, its first triangle the file's `start`-th,
+    /// but for its positions and triangles, which are in its rooms: what [`join_rooms`] needs
+    /// of them is returned.
+    fn add(&mut self, piece: Piece, start: usize) -> (Filled<Vec3>, Filled<[u32; 3]>) {
         append(&mut self.normals, &piece.normals);
         append(&mut self.uvs, &piece.uvs);
         self.missing_vertex |= piece.missing_vertex;
@@ -248,14 +283,10 @@ impl Statements {
         } else if !self.vertex_without_color {
             append(&mut self.colors, &piece.colors);
         }
-        // The triangles, with each `usemtl` where it came among them.
-        let mut from = 0;
+        // Each `usemtl` where it came among the triangles.
         for (at, name) in &piece.material_uses {
-            append(&mut self.triangles, &piece.triangles[from..*at]);
-            from = *at;
             self.use_material(name, start + at);
         }
-        append(&mut self.triangles, &piece.triangles[from..]);
         if piece.corner_without_normal {
             self.corner_without_normal = true;
             self.normal_corners = Vec::new();
@@ -269,6 +300,7 @@ impl Statements {
             append(&mut self.uv_corners, &piece.uv_corners);
         }
         self.libraries.extend(piece.libraries);
+        (piece.positions.into_filled(), piece.triangles.into_filled())
     }
 
     /// Makes `name` the material of the faces from triangle `start` on (`usemtl` with no
@@ -398,6 +430,19 @@ fn missing_vertex(text: &[u8]) -> Option<(usize, i64, usize)> {
         }
     }
     None
+}
+
+/// `values` cut into one room a piece, one after another, each as long as `lengths` says as far
+/// as `values` goes (the rooms past its end are empty).
+fn rooms<T>(mut values: &mut [T], lengths: impl Iterator<Item = usize>) -> Vec<&mut [T]> {
+    lengths
+        .map(|length| {
+            let length = length.min(values.len());
+            let (room, rest) = std::mem::take(&mut values).split_at_mut(length);
+            values = rest;
+            room
+        })
+        .collect()
 }
 
 /// `text` cut into pieces of whole lines of about `size` bytes or more (the last may be

@@ -19,6 +19,7 @@ use glam::{Vec2, Vec3};
 use super::normals::unit_or_zero;
 use super::obj_error::ObjProblem;
 use super::obj_number::{decimal_at, index_at, parse_f32, parse_index};
+use super::piece_room::Room;
 use super::srgb::srgb_to_linear;
 use crate::scene::limits::COORDINATE;
 
@@ -50,17 +51,18 @@ impl Counts {
     }
 }
 
-/// What one piece of the file holds, with indices and lines for the whole file.
+/// What one piece of the file holds, with indices and lines for the whole file. Its positions
+/// and triangles are written into its rooms in the file's arrays.
 #[derive(Debug, Default)]
-pub struct Piece {
-    pub positions: Vec<Vec3>,
+pub struct Piece<'a> {
+    pub positions: Room<'a, Vec3>,
     /// Unit normals (zero for a zero normal), as `vn` statements give them.
     pub normals: Vec<Vec3>,
     /// The linear colour of each vertex, while every vertex of the piece so far has one.
     pub colors: Vec<Vec3>,
     /// Whether some vertex of the piece has no colour.
     pub vertex_without_color: bool,
-    pub triangles: Vec<[u32; 3]>,
+    pub triangles: Room<'a, [u32; 3]>,
     /// The normal index of each triangle corner, while every corner so far has one.
     pub normal_corners: Vec<[u32; 3]>,
     /// Whether some face corner of the piece has no normal.
@@ -165,22 +167,25 @@ pub fn count_statements(text: &[u8]) -> Counts {
 }
 
 /// Reads `text` (whole lines), the part of the file after what `before` counts, with room
-/// made at once for what `holds` counts in it (its [`count_statements`]). An error gives its
-/// line in the file.
-pub fn read_piece(
+/// made at once for what `holds` counts in it (its [`count_statements`]): its positions are
+/// written into `positions` and its triangles into `triangles` (see [`Room`]). An error gives
+/// its line in the file.
+pub fn read_piece<'a>(
     text: &[u8],
     before: Counts,
     holds: Counts,
-) -> Result<Piece, (usize, ObjProblem)> {
+    positions: &'a mut [Vec3],
+    triangles: &'a mut [[u32; 3]],
+) -> Result<Piece<'a>, (usize, ObjProblem)> {
     let corners = |indexed: usize| match indexed {
         0 => 0,
         _ => holds.faces,
     };
     let piece = Piece {
-        positions: Vec::with_capacity(holds.positions),
+        positions: Room::new(positions),
         normals: Vec::with_capacity(holds.normals),
         uvs: Vec::with_capacity(holds.uvs),
-        triangles: Vec::with_capacity(holds.faces),
+        triangles: Room::new(triangles),
         normal_corners: Vec::with_capacity(corners(before.normals + holds.normals)),
         uv_corners: Vec::with_capacity(corners(before.uvs + holds.uvs)),
         ..Piece::default()
@@ -257,8 +262,8 @@ impl<'a> Iterator for AsciiWords<'a> {
 }
 
 /// A piece being read.
-struct PieceReader {
-    piece: Piece,
+struct PieceReader<'a> {
+    piece: Piece<'a>,
     before: Counts,
     /// The corners of the face being read.
     corners: Vec<Corner>,
@@ -266,7 +271,7 @@ struct PieceReader {
     limit: u64,
 }
 
-impl PieceReader {
+impl PieceReader<'_> {
     /// Reads line `number` of the file (`line`, split into `words`) by its words: a line
     /// [`PieceReader::plain_statement`] did not read, or one that is not ASCII.
     fn statement_by_words<'a>(
@@ -738,7 +743,13 @@ mod tests {
                 let bytes = text.as_bytes();
                 format!(
                     "{:?}",
-                    read_piece(bytes, Counts::default(), count_statements(bytes))
+                    read_piece(
+                        bytes,
+                        Counts::default(),
+                        count_statements(bytes),
+                        &mut [],
+                        &mut []
+                    )
                 )
             };
             // A comment that is not ASCII sends the whole text through the line-by-line path.
