@@ -4,8 +4,8 @@
 //! a time; each block's whole lines are cut into pieces read on all cores
 //! ([`super::obj_piece`]) and joined in order, so indices, errors and materials are as one
 //! reader going line by line would find them; the pieces write their positions and triangles
-//! straight into the file's arrays ([`super::piece_room`]). The next block is read ([`super::line_blocks`])
-//! while one is parsed. Nothing else of the file is kept, so loading
+//! straight into the file's arrays ([`super::piece_room`]). The next block is read
+//! ([`super::line_blocks`]) while one is parsed. Nothing else of the file is kept, so loading
 //! takes about the memory of the result and a block: 12 bytes a vertex and 12 a triangle (36
 //! more a triangle when the file gives normals everywhere, 24 more when it gives texture
 //! coordinates everywhere, 12 more a vertex when it colours every vertex).
@@ -26,7 +26,7 @@ use rayon::prelude::*;
 
 use super::obj_error::{ObjError, ObjProblem};
 use super::obj_piece::{Counts, Piece, count_statements, read_piece};
-use super::piece_room::{Filled, join_rooms};
+use super::piece_room::{Filled, Room, join_rooms};
 use super::used_vertices::drop_unused;
 use crate::huge_pages::extend_filled;
 use crate::input_file::{MAX_MODEL_BYTES, open_bounded, read_bounded};
@@ -190,7 +190,7 @@ impl Statements {
         }
         let limit = crate::memory_budget::triangle_cap();
         let holds = counts.iter().fold(Counts::default(), |a, &b| a.then(b));
-        self.reserve(holds, limit);
+        self.reserve(holds);
         // Each piece's room in the file's arrays, as long as its counts say (its faces' first
         // triangles, as far as the triangle limit allows), written as the pieces are read.
         let mut positions = std::mem::take(&mut self.positions);
@@ -199,11 +199,11 @@ impl Statements {
         let triangle_room = holds
             .faces
             .min((limit as usize).saturating_sub(triangles_start));
-        let position_rooms = rooms(
+        let position_rooms = Room::cut(
             extend_filled(&mut positions, holds.positions, Vec3::ZERO),
             counts.iter().map(|c| c.positions),
         );
-        let triangle_rooms = rooms(
+        let triangle_rooms = Room::cut(
             extend_filled(&mut triangles, triangle_room, [0; 3]),
             counts.iter().map(|c| c.faces),
         );
@@ -233,7 +233,7 @@ impl Statements {
                         triangles: triangles_read,
                         ..before
                     };
-                    read_piece(text, before, holds, &mut [], &mut [])?;
+                    read_piece(text, before, holds, Room::default(), Room::default())?;
                     return Err((
                         before.lines + holds.lines,
                         ObjProblem::TooManyTriangles { limit },
@@ -257,14 +257,11 @@ impl Statements {
         Ok(())
     }
 
-    /// Makes room for the statements `holds` counts, about to be added: for its faces' first
-    /// triangles, as far as the triangle `limit` allows.
-    fn reserve(&mut self, holds: Counts, limit: u64) {
-        self.positions.reserve(holds.positions);
+    /// Makes room for the normals, texture coordinates and colours that `holds` counts, about
+    /// to be added (positions and triangles get theirs as rooms, see [`Statements::read_lines`]).
+    fn reserve(&mut self, holds: Counts) {
         self.normals.reserve(holds.normals);
         self.uvs.reserve(holds.uvs);
-        let room = (limit as usize).saturating_sub(self.triangles.len());
-        self.triangles.reserve(holds.faces.min(room));
         if !self.vertex_without_color && !self.colors.is_empty() {
             self.colors.reserve(holds.positions);
         }
@@ -430,19 +427,6 @@ fn missing_vertex(text: &[u8]) -> Option<(usize, i64, usize)> {
         }
     }
     None
-}
-
-/// `values` cut into one room a piece, one after another, each as long as `lengths` says as far
-/// as `values` goes (the rooms past its end are empty).
-fn rooms<T>(mut values: &mut [T], lengths: impl Iterator<Item = usize>) -> Vec<&mut [T]> {
-    lengths
-        .map(|length| {
-            let length = length.min(values.len());
-            let (room, rest) = std::mem::take(&mut values).split_at_mut(length);
-            values = rest;
-            room
-        })
-        .collect()
 }
 
 /// `text` cut into pieces of whole lines of about `size` bytes or more (the last may be

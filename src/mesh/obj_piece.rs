@@ -167,25 +167,25 @@ pub fn count_statements(text: &[u8]) -> Counts {
 }
 
 /// Reads `text` (whole lines), the part of the file after what `before` counts, with room
-/// made at once for what `holds` counts in it (its [`count_statements`]): its positions are
-/// written into `positions` and its triangles into `triangles` (see [`Room`]). An error gives
-/// its line in the file.
+/// made at once for what `holds` counts in it (its [`count_statements`]): its positions go
+/// into the room `positions` and its triangles into `triangles`. An error gives its line in
+/// the file.
 pub fn read_piece<'a>(
     text: &[u8],
     before: Counts,
     holds: Counts,
-    positions: &'a mut [Vec3],
-    triangles: &'a mut [[u32; 3]],
+    positions: Room<'a, Vec3>,
+    triangles: Room<'a, [u32; 3]>,
 ) -> Result<Piece<'a>, (usize, ObjProblem)> {
     let corners = |indexed: usize| match indexed {
         0 => 0,
         _ => holds.faces,
     };
     let piece = Piece {
-        positions: Room::new(positions),
+        positions,
         normals: Vec::with_capacity(holds.normals),
         uvs: Vec::with_capacity(holds.uvs),
-        triangles: Room::new(triangles),
+        triangles,
         normal_corners: Vec::with_capacity(corners(before.normals + holds.normals)),
         uv_corners: Vec::with_capacity(corners(before.uvs + holds.uvs)),
         ..Piece::default()
@@ -747,8 +747,8 @@ mod tests {
                         bytes,
                         Counts::default(),
                         count_statements(bytes),
-                        &mut [],
-                        &mut []
+                        Room::default(),
+                        Room::default()
                     )
                 )
             };

@@ -38,6 +38,19 @@ impl<'a, T: Copy> Room<'a, T> {
         }
     }
 
+    /// `values` cut into one room a piece, one after another, each as long as `lengths` says,
+    /// as far as `values` goes (the rooms past its end are empty).
+    pub fn cut(mut values: &'a mut [T], lengths: impl Iterator<Item = usize>) -> Vec<Room<'a, T>> {
+        lengths
+            .map(|length| {
+                let length = length.min(values.len());
+                let (slots, rest) = std::mem::take(&mut values).split_at_mut(length);
+                values = rest;
+                Room::new(slots)
+            })
+            .collect()
+    }
+
     /// Values pushed so far.
     #[inline]
     pub fn len(&self) -> usize {
@@ -148,22 +161,19 @@ mod tests {
             values.resize(start + made, 0);
             let mut expected: Vec<u32> = values[..start].to_vec();
             let mut next = 0;
-            let filled: Vec<Filled<u32>> = {
-                let mut rest = &mut values[start..];
-                plan.iter()
-                    .map(|&(room, pushed)| {
-                        let (slots, after) = std::mem::take(&mut rest).split_at_mut(room);
-                        rest = after;
-                        let mut room = Room::new(slots);
-                        for _ in 0..pushed {
-                            next += 1;
-                            room.push(next);
-                            expected.push(next);
-                        }
-                        room.into_filled()
-                    })
-                    .collect()
-            };
+            let rooms = Room::cut(&mut values[start..], plan.iter().map(|p| p.0));
+            let filled: Vec<Filled<u32>> = rooms
+                .into_iter()
+                .zip(&plan)
+                .map(|(mut room, &(_, pushed))| {
+                    for _ in 0..pushed {
+                        next += 1;
+                        room.push(next);
+                        expected.push(next);
+                    }
+                    room.into_filled()
+                })
+                .collect();
             join_rooms(&mut values, start, &filled);
             assert_eq!(values, expected, "{plan:?}");
         }
