@@ -38,6 +38,9 @@ impl PngSamples {
 
 /// The 8-bit samples of `frame`: RGBA when the frame has alpha, else RGB.
 pub fn samples8(frame: &Frame) -> Vec<u8> {
+    if frame.alpha.is_none() {
+        return frame.to_srgb8();
+    }
     samples(frame, encode_srgb, |a| {
         (a.clamp(0.0, 1.0) * 255.0 + 0.5) as u8
     })

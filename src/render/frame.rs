@@ -6,6 +6,7 @@ use std::ops::{AddAssign, Mul};
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::srgb_encode::{SrgbEncoder, encode_srgb_by_table, srgb_curve};
 use crate::mesh::{srgb_byte_to_linear, srgb_to_linear};
 
 /// A `width`×`height` image of linear RGB, row-major from the top-left pixel, with coverage
@@ -66,10 +67,19 @@ impl Frame {
 
     /// 8-bit sRGB bytes, three per pixel: each channel clamped to [0, 1] then sRGB-encoded.
     pub fn to_srgb8(&self) -> Vec<u8> {
-        self.pixels
-            .iter()
-            .flat_map(|p| p.to_array().map(encode_srgb))
-            .collect()
+        /// Pixels a task encodes.
+        const CHUNK: usize = 4096;
+        let encoder = SrgbEncoder::new();
+        let mut bytes = vec![0u8; 3 * self.pixels.len()];
+        bytes
+            .par_chunks_mut(3 * CHUNK)
+            .zip(self.pixels.par_chunks(CHUNK))
+            .for_each(|(bytes, pixels)| {
+                for (rgb, p) in bytes.chunks_exact_mut(3).zip(pixels) {
+                    rgb.copy_from_slice(&p.to_array().map(|c| encoder.encode(c)));
+                }
+            });
+        bytes
     }
 
     /// The 8-bit sRGB colour of one pixel.
@@ -102,10 +112,11 @@ where
         });
 }
 
-/// Linear [0, 1] (clamped) to an 8-bit sRGB code value.
+/// Linear [0, 1] (clamped; NaN reads as 0) to an 8-bit sRGB code value, by table (the
+/// formula's codes; see `srgb_encode`).
 #[inline]
 pub fn encode_srgb(linear: f32) -> u8 {
-    (srgb_curve(linear) * 255.0 + 0.5) as u8
+    encode_srgb_by_table(linear)
 }
 
 /// Linear [0, 1] (clamped) to a 16-bit sRGB code value.
@@ -125,16 +136,4 @@ pub fn decode_srgb(code: u8) -> f32 {
 #[inline]
 pub fn decode_srgb16(code: u16) -> f32 {
     srgb_to_linear(code as f32 / 65535.0)
-}
-
-/// The sRGB transfer function: linear [0, 1] (clamped) to encoded [0, 1]; the inverse of
-/// [`srgb_to_linear`].
-#[inline]
-fn srgb_curve(linear: f32) -> f32 {
-    let c = linear.clamp(0.0, 1.0);
-    if c <= 0.003_130_8 {
-        12.92 * c
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
-    }
 }

@@ -3,11 +3,12 @@
 //!
 //! Shared by all three: the options (`options`, `algorithm`), the projection (`camera`), the
 //! lighting function (`shading`, with each object's coefficients in `materials`), the image
-//! (`frame`), progress and cancellation (`progress`), and what a render reports (`stats`). The
-//! display modes (`display_mode`, `mode_shading`, `triangle_edges`) and the overlays (`overlay/`)
-//! work from the surface each sample sees (`surface_hit`), which every algorithm finds alike. The
-//! Z-buffer with Gouraud and Phong shading lives in `raster/`, the ray tracer with its BVH in
-//! `ray/`, eight-lane arithmetic in `simd/`. Only what is re-exported here is the contract.
+//! (`frame`, its 8-bit sRGB codes by table in `srgb_encode`), progress and cancellation
+//! (`progress`), and what a render reports (`stats`). The display modes (`display_mode`,
+//! `mode_shading`, `triangle_edges`) and the overlays (`overlay/`) work from the surface each
+//! sample sees (`surface_hit`), which every algorithm finds alike. The Z-buffer with Gouraud
+//! and Phong shading lives in `raster/`, the ray tracer with its BVH in `ray/`, eight-lane
+//! arithmetic in `simd/`. Only what is re-exported here is the contract.
 
 mod algorithm;
 mod camera;
@@ -28,6 +29,7 @@ mod renderer;
 mod scratch;
 mod shading;
 mod simd;
+mod srgb_encode;
 mod stats;
 mod surface_hit;
 mod texturing;
