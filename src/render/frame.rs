@@ -6,7 +6,7 @@ use std::ops::{AddAssign, Mul};
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::srgb_encode::{SrgbEncoder, encode_srgb_by_table, srgb_curve};
+use super::srgb_encode::{SrgbEncoder, encode_srgb, srgb_curve};
 use crate::mesh::{srgb_byte_to_linear, srgb_to_linear};
 
 /// A `width`×`height` image of linear RGB, row-major from the top-left pixel, with coverage
@@ -67,19 +67,24 @@ impl Frame {
 
     /// 8-bit sRGB bytes, three per pixel: each channel clamped to [0, 1] then sRGB-encoded.
     pub fn to_srgb8(&self) -> Vec<u8> {
+        // From pixels of three bytes to bytes: always the same memory.
+        bytemuck::cast_vec(self.srgb8_pixels())
+    }
+
+    /// Each pixel's 8-bit sRGB colour, as [`Frame::to_srgb8`] encodes it.
+    pub fn srgb8_pixels(&self) -> Vec<[u8; 3]> {
         /// Pixels a task encodes.
         const CHUNK: usize = 4096;
         let encoder = SrgbEncoder::new();
-        let mut bytes = vec![0u8; 3 * self.pixels.len()];
-        bytes
-            .par_chunks_mut(3 * CHUNK)
+        let mut rgb = vec![[0u8; 3]; self.pixels.len()];
+        rgb.par_chunks_mut(CHUNK)
             .zip(self.pixels.par_chunks(CHUNK))
-            .for_each(|(bytes, pixels)| {
-                for (rgb, p) in bytes.chunks_exact_mut(3).zip(pixels) {
-                    rgb.copy_from_slice(&p.to_array().map(|c| encoder.encode(c)));
+            .for_each(|(rgb, pixels)| {
+                for (rgb, p) in rgb.iter_mut().zip(pixels) {
+                    *rgb = p.to_array().map(|c| encoder.encode(c));
                 }
             });
-        bytes
+        rgb
     }
 
     /// The 8-bit sRGB colour of one pixel.
@@ -110,13 +115,6 @@ where
                 *pixel = sum * scale;
             }
         });
-}
-
-/// Linear [0, 1] (clamped; NaN reads as 0) to an 8-bit sRGB code value, by table (the
-/// formula's codes; see `srgb_encode`).
-#[inline]
-pub fn encode_srgb(linear: f32) -> u8 {
-    encode_srgb_by_table(linear)
 }
 
 /// Linear [0, 1] (clamped) to a 16-bit sRGB code value.

@@ -40,7 +40,7 @@ pub use camera::{NEAR, View};
 pub use cpu::cpu_features;
 pub use display_mode::{DisplayMode, UnknownMode};
 pub use error::RenderError;
-pub use frame::{Frame, decode_srgb, decode_srgb16, encode_srgb, encode_srgb16};
+pub use frame::{Frame, decode_srgb, decode_srgb16, encode_srgb16};
 pub use mode_shading::{EDGE_HALF_WIDTH, objects_without_uvs};
 pub use options::{MAX_DIMENSION, MAX_SAMPLES, MAX_SAMPLES_TOTAL, RenderOptions, Size, SizeError};
 pub use overlay::{
@@ -50,5 +50,6 @@ pub use progress::{Cancelled, Progress};
 #[cfg(test)]
 pub(crate) use raster::coverage_counts;
 pub use renderer::Renderer;
+pub use srgb_encode::encode_srgb;
 pub use stats::{RayCounts, RenderStats};
 pub use surface_hit::SurfaceHit;

@@ -10,7 +10,7 @@
 //! every 1,009th bit pattern.
 //!
 //! By formula on one thread, an 800×600 preview picture took 13 ms to encode and a 1920×1080
-//! frame 58–92 ms, more than rendering it; by table, in parallel chunks (`Frame::to_srgb8`),
+//! frame 58–92 ms, more than rendering it; by table, in parallel chunks (`Frame::srgb8_pixels`),
 //! 3.7 and 15 ms (the README's figures).
 
 use std::sync::OnceLock;
@@ -39,9 +39,10 @@ pub fn srgb_curve(linear: f32) -> f32 {
     }
 }
 
-/// [`encode_srgb_by_formula`]'s code of `linear`, by table.
+/// Linear [0, 1] (clamped; NaN reads as 0) to an 8-bit sRGB code value: [`encode_srgb_by_formula`]'s
+/// code, by table.
 #[inline]
-pub fn encode_srgb_by_table(linear: f32) -> u8 {
+pub fn encode_srgb(linear: f32) -> u8 {
     SrgbEncoder::new().encode(linear)
 }
 
@@ -138,7 +139,7 @@ mod tests {
             assert_eq!(encode_srgb_by_formula(at), k as u8, "threshold {k}");
             assert_eq!(encode_srgb_by_formula(before(at)), k as u8 - 1, "below {k}");
             for x in [at, before(at), f32::from_bits(at.to_bits() + 1)] {
-                assert_eq!(encode_srgb_by_table(x), encode_srgb_by_formula(x), "{x}");
+                assert_eq!(encode_srgb(x), encode_srgb_by_formula(x), "{x}");
             }
         }
     }
@@ -148,7 +149,7 @@ mod tests {
         // Every 1,009th bit pattern from 0 to 1, and the ends and what lies outside.
         for bits in (0..=1.0f32.to_bits()).step_by(1009) {
             let x = f32::from_bits(bits);
-            assert_eq!(encode_srgb_by_table(x), encode_srgb_by_formula(x), "{x}");
+            assert_eq!(encode_srgb(x), encode_srgb_by_formula(x), "{x}");
         }
         for x in [
             0.0,
@@ -160,16 +161,16 @@ mod tests {
             f32::NAN,
             f32::MIN_POSITIVE,
         ] {
-            assert_eq!(encode_srgb_by_table(x), encode_srgb_by_formula(x), "{x}");
+            assert_eq!(encode_srgb(x), encode_srgb_by_formula(x), "{x}");
         }
-        assert_eq!(encode_srgb_by_table(0.5), 188);
+        assert_eq!(encode_srgb(0.5), 188);
     }
 
     #[test]
     fn every_code_decoded_encodes_to_itself() {
         for code in 0..=255u8 {
             let linear = crate::mesh::srgb_byte_to_linear(code);
-            assert_eq!(encode_srgb_by_table(linear), code);
+            assert_eq!(encode_srgb(linear), code);
         }
     }
 }

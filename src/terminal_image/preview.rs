@@ -42,11 +42,7 @@ pub struct PreviewImage {
 impl PreviewImage {
     /// Encodes `frame` to sRGB.
     pub fn from_frame(frame: &Frame) -> PreviewImage {
-        let pixels = frame
-            .to_srgb8()
-            .chunks_exact(3)
-            .map(|c| [c[0], c[1], c[2]])
-            .collect();
+        let pixels = frame.srgb8_pixels();
         PreviewImage {
             width: frame.width,
             height: frame.height,
