@@ -207,6 +207,11 @@ fn report(path: &Path, up: Option<rastray::scene::UpAxis>) -> anyhow::Result<()>
             )),
         measurements(&total)
     );
+    // The process ends next, and exiting hands all its memory back at once: freeing the model
+    // and the world array by array first took 7-11 ms of the 1.31M-triangle icosphere's
+    // `info`, each array returned on its own while the pool's threads run.
+    std::mem::forget(report);
+    std::mem::forget(cache);
     Ok(())
 }
 

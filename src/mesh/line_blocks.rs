@@ -63,7 +63,12 @@ fn read_ahead<R: Read>(
         // Read until the block holds a whole line, or the file ends (or reaches its limit).
         let end = loop {
             let from = text.len();
+            let room = text.capacity();
             text.reserve(size);
+            if text.capacity() > room {
+                // A block of megabytes: 2 MiB pages, faulted in 512 times less often.
+                crate::huge_pages::advise(text.spare_capacity_mut());
+            }
             match file.by_ref().take(size as u64).read_to_end(&mut text) {
                 Err(e) => {
                     let _ = full.send(Err(e));

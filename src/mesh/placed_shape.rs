@@ -35,7 +35,8 @@ pub fn shared_shape(geometry: &ModelGeometry) -> Mesh {
 /// and its vertex colours.
 fn bare_shape(positions: Vec<Vec3>, geometry: &ModelGeometry) -> Mesh {
     // Copied on every core: 16 MB for the 1.31M-triangle icosphere.
-    let mut triangles: Vec<[u32; 3]> = geometry.triangles.par_iter().copied().collect();
+    let mut triangles: Vec<[u32; 3]> =
+        crate::huge_pages::collected(geometry.triangles.par_iter().copied());
     match drop_unused(&mut triangles, geometry.positions.len()) {
         None => Mesh {
             positions,

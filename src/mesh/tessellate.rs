@@ -115,12 +115,13 @@ pub fn placed_positions(object: &Object, geometry: &ModelGeometry, centre: Vec3)
         panic!("only mesh objects have model parts");
     };
     let transform = object_transform(object);
-    geometry
-        .positions
-        .par_iter()
-        .with_min_len(PASS_CHUNK)
-        .map(|&p| transform.transform_point3((p - centre) * *scale))
-        .collect()
+    crate::huge_pages::collected(
+        geometry
+            .positions
+            .par_iter()
+            .with_min_len(PASS_CHUNK)
+            .map(|&p| transform.transform_point3((p - centre) * *scale)),
+    )
 }
 
 /// A mesh using the file's own corner normals, and `colors` (one per position) when given;
