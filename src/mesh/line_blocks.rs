@@ -66,7 +66,8 @@ fn read_ahead<R: Read>(
             let room = text.capacity();
             text.reserve(size);
             if text.capacity() > room {
-                // A block of megabytes: 2 MiB pages, faulted in 512 times less often.
+                // Blocks grow to megabytes: in 2 MiB pages they are faulted in 512 times less
+                // often (only whole 2 MiB pages inside the buffer are asked for).
                 crate::huge_pages::advise(text.spare_capacity_mut());
             }
             match file.by_ref().take(size as u64).read_to_end(&mut text) {
