@@ -127,7 +127,11 @@ fn absurd_sizes_are_refused_before_any_allocation_with_the_limit_stated() {
     let scene = scenes().join("default.toml");
     for (size, samples, needle) in [
         ("100000x100000", "1", "16384"),
-        ("0x10", "1", "between 1"),
+        (
+            "0x10",
+            "1",
+            "0x10 is out of range: width and height must each be between 1",
+        ),
         ("12x", "1", "WIDTHxHEIGHT"),
         ("8000x8000", "4", "limit"),
     ] {
@@ -146,6 +150,33 @@ fn absurd_sizes_are_refused_before_any_allocation_with_the_limit_stated() {
         );
         assert_eq!(o.status.code(), Some(2), "{size}: {}", stderr(&o));
         assert!(stderr(&o).contains(needle), "{size}: {}", stderr(&o));
+    }
+}
+
+#[test]
+fn thread_counts_past_the_limit_are_refused_before_any_thread_starts() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = scenes().join("default.toml");
+    // 100000 threads had been started one by one (minutes, then an abort); 1024 is the limit
+    // the config file's `threads` has too.
+    for threads in ["0", "1025", "100000", "two"] {
+        let o = rastray(
+            &[
+                "render",
+                scene.to_str().unwrap(),
+                "-s",
+                "16x16",
+                "--threads",
+                threads,
+                "-o",
+                "x.png",
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(2), "{threads}: {}", stderr(&o));
+        let expected = format!("`{threads}` threads is out of range: use 1 to 1024");
+        assert!(stderr(&o).contains(&expected), "{threads}: {}", stderr(&o));
+        assert!(!dir.path().join("x.png").exists(), "{threads}");
     }
 }
 

@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 
 use clap::ValueEnum;
 use rastray::input_file::{MAX_SCENE_BYTES, read_bounded_text};
-use rastray::render::{MAX_SAMPLES, Size};
+use rastray::render::{MAX_SAMPLES, MAX_THREADS, Size};
 use rastray::scene::UpAxis;
 use rastray::text_escape::Escaped;
 
@@ -130,7 +130,7 @@ pub fn parse(text: &str, path: &Path) -> anyhow::Result<Defaults> {
             "up" => defaults.up = Some(super::up_arg::parse_up(string()?).map_err(refuse)?),
             "samples" => defaults.samples = Some(integer(1..=i64::from(MAX_SAMPLES))? as u32),
             "threads" => {
-                defaults.threads = NonZeroUsize::new(integer(1..=1024)? as usize);
+                defaults.threads = NonZeroUsize::new(integer(1..=MAX_THREADS as i64)? as usize);
             }
             _ => {
                 return Err(refuse(format!(

@@ -25,6 +25,7 @@ mod view;
 mod view_grid;
 mod view_terminal;
 
+use std::num::NonZeroUsize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -32,7 +33,7 @@ use anyhow::Context;
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 use rastray::mesh::EXPECTED_MODEL;
 use rastray::pool_thread::on_pool_thread;
-use rastray::render::Size;
+use rastray::render::{MAX_THREADS, Size};
 use rastray::scene::{SceneError, UpAxis};
 use rastray::terminal_image::ColorMode;
 use rastray::text_escape::Escaped;
@@ -354,6 +355,15 @@ pub fn build_world_with(
         eprintln!("warning: {}", Escaped(&warning.to_string()));
     }
     Ok(report)
+}
+
+/// Parses a count of render threads, 1 to [`MAX_THREADS`], for clap.
+pub fn parse_threads(s: &str) -> Result<NonZeroUsize, String> {
+    let out_of_range = || format!("`{s}` threads is out of range: use 1 to {MAX_THREADS}");
+    let count: usize = s.trim().parse().map_err(|_| out_of_range())?;
+    NonZeroUsize::new(count)
+        .filter(|n| n.get() <= MAX_THREADS)
+        .ok_or_else(out_of_range)
 }
 
 /// Parses WIDTHxHEIGHT for clap.

@@ -49,8 +49,9 @@ pub struct RenderArgs {
     /// Supersampling: N×N samples per pixel, 1 to 8 (default 1, or the config file's).
     #[arg(long)]
     pub samples: Option<u32>,
-    /// Render threads (default one per core, or the config file's); the image is the same.
-    #[arg(long)]
+    /// Render threads, 1 to 1024 (default one per core, or the config file's); the image is
+    /// the same.
+    #[arg(long, value_parser = super::parse_threads)]
     pub threads: Option<NonZeroUsize>,
     /// Ray tracer: reflection depth, 0 to 16 (default: the scene's max_depth).
     #[arg(long, value_parser = clap::value_parser!(u32).range(0..=rastray::scene::MAX_DEPTH as i64))]

@@ -14,6 +14,9 @@ pub const MAX_DIMENSION: u32 = 16_384;
 pub const MAX_SAMPLES_TOTAL: u64 = 8192 * 8192;
 /// Largest supersampling factor N (N×N samples per pixel).
 pub const MAX_SAMPLES: u32 = 8;
+/// Most render threads a render may be given (`--threads`, the config file's `threads`): each
+/// is an operating-system thread, started before the render.
+pub const MAX_THREADS: usize = 1024;
 
 /// An image size in pixels, both sides in 1..=[`MAX_DIMENSION`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -35,7 +38,7 @@ pub enum SizeError {
     #[error("`{0}` is not a size: write WIDTHxHEIGHT, such as 1920x1080")]
     Syntax(String),
     #[error(
-        "{width}x{height} is too large: width and height must each be between 1 and {MAX_DIMENSION}"
+        "{width}x{height} is out of range: width and height must each be between 1 and {MAX_DIMENSION}"
     )]
     Dimension { width: u64, height: u64 },
     #[error("{samples} samples per pixel side is out of range: use 1 to {MAX_SAMPLES}")]
