@@ -157,9 +157,14 @@ fn absurd_sizes_are_refused_before_any_allocation_with_the_limit_stated() {
 fn thread_counts_past_the_limit_are_refused_before_any_thread_starts() {
     let dir = tempfile::tempdir().expect("tempdir");
     let scene = scenes().join("default.toml");
-    // 100000 threads had been started one by one (minutes, then an abort); 1024 is the limit
-    // the config file's `threads` has too.
-    for threads in ["0", "1025", "100000", "two"] {
+    // `--threads 20000` had started its threads one by one, still at it when a 30-second
+    // timeout stopped it; 1024 is the limit the config file's `threads` has too.
+    for (threads, problem) in [
+        ("0", "threads is out of range"),
+        ("1025", "threads is out of range"),
+        ("100000", "threads is out of range"),
+        ("two", "is not a thread count"),
+    ] {
         let o = rastray(
             &[
                 "render",
@@ -174,7 +179,7 @@ fn thread_counts_past_the_limit_are_refused_before_any_thread_starts() {
             dir.path(),
         );
         assert_eq!(o.status.code(), Some(2), "{threads}: {}", stderr(&o));
-        let expected = format!("`{threads}` threads is out of range: use 1 to 1024");
+        let expected = format!("`{threads}` {problem}: use 1 to 1024");
         assert!(stderr(&o).contains(&expected), "{threads}: {}", stderr(&o));
         assert!(!dir.path().join("x.png").exists(), "{threads}");
     }

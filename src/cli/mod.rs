@@ -359,11 +359,13 @@ pub fn build_world_with(
 
 /// Parses a count of render threads, 1 to [`MAX_THREADS`], for clap.
 pub fn parse_threads(s: &str) -> Result<NonZeroUsize, String> {
-    let out_of_range = || format!("`{s}` threads is out of range: use 1 to {MAX_THREADS}");
-    let count: usize = s.trim().parse().map_err(|_| out_of_range())?;
+    let count: usize = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a thread count: use 1 to {MAX_THREADS}"))?;
     NonZeroUsize::new(count)
         .filter(|n| n.get() <= MAX_THREADS)
-        .ok_or_else(out_of_range)
+        .ok_or_else(|| format!("`{s}` threads is out of range: use 1 to {MAX_THREADS}"))
 }
 
 /// Parses WIDTHxHEIGHT for clap.
