@@ -33,7 +33,7 @@ use anyhow::Context;
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 use rastray::mesh::EXPECTED_MODEL;
 use rastray::pool_thread::on_pool_thread;
-use rastray::render::{MAX_THREADS, Size};
+use rastray::render::{MAX_THREADS, Size, SizeError};
 use rastray::scene::{SceneError, UpAxis};
 use rastray::terminal_image::ColorMode;
 use rastray::text_escape::Escaped;
@@ -357,7 +357,8 @@ pub fn build_world_with(
     Ok(report)
 }
 
-/// Parses a count of render threads, 1 to [`MAX_THREADS`], for clap.
+/// Parses a count of render threads, 1 to [`MAX_THREADS`], for clap: refused with the words of
+/// [`RenderOptions::check`](rastray::render::RenderOptions::check), which bounds every render.
 pub fn parse_threads(s: &str) -> Result<NonZeroUsize, String> {
     let count: usize = s
         .trim()
@@ -365,7 +366,7 @@ pub fn parse_threads(s: &str) -> Result<NonZeroUsize, String> {
         .map_err(|_| format!("`{s}` is not a thread count: use 1 to {MAX_THREADS}"))?;
     NonZeroUsize::new(count)
         .filter(|n| n.get() <= MAX_THREADS)
-        .ok_or_else(|| format!("`{s}` threads is out of range: use 1 to {MAX_THREADS}"))
+        .ok_or_else(|| SizeError::Threads { threads: count }.to_string())
 }
 
 /// Parses WIDTHxHEIGHT for clap.

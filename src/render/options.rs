@@ -32,7 +32,7 @@ impl Size {
     }
 }
 
-/// A size or sample count refused before anything is allocated.
+/// A size, sample count or thread count refused before anything is allocated or started.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum SizeError {
     #[error("`{0}` is not a size: write WIDTHxHEIGHT, such as 1920x1080")]
@@ -52,6 +52,8 @@ pub enum SizeError {
         samples: u32,
         total: u64,
     },
+    #[error("`{threads}` threads is out of range: use 1 to {MAX_THREADS}")]
+    Threads { threads: usize },
 }
 
 impl FromStr for Size {
@@ -125,8 +127,14 @@ impl RenderOptions {
         }
     }
 
-    /// Checks the size and sample limits.
+    /// Checks the size, sample and thread limits: every render path calls this before it
+    /// allocates a frame or starts a pool.
     pub fn check(&self) -> Result<(), SizeError> {
+        if let Some(threads) = self.threads.filter(|n| n.get() > MAX_THREADS) {
+            return Err(SizeError::Threads {
+                threads: threads.get(),
+            });
+        }
         let (width, height, samples) = (self.width, self.height, self.samples);
         if !(1..=MAX_DIMENSION).contains(&width) || !(1..=MAX_DIMENSION).contains(&height) {
             return Err(SizeError::Dimension {
@@ -147,5 +155,29 @@ impl RenderOptions {
             });
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_check_refuses_a_thread_count_past_the_limit_before_any_pool_starts() {
+        let with = |threads: usize| RenderOptions {
+            threads: NonZeroUsize::new(threads),
+            ..RenderOptions::new(Algorithm::Phong, 16, 16)
+        };
+        assert_eq!(with(MAX_THREADS).check(), Ok(()));
+        assert_eq!(
+            with(MAX_THREADS + 1).check(),
+            Err(SizeError::Threads {
+                threads: MAX_THREADS + 1
+            })
+        );
+        assert_eq!(
+            SizeError::Threads { threads: 5000 }.to_string(),
+            "`5000` threads is out of range: use 1 to 1024"
+        );
     }
 }
