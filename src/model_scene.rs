@@ -17,12 +17,16 @@ pub const FIT_RADIUS: f32 = 1.0;
 /// Vertical field of view of the camera, degrees.
 const FOV: f32 = 40.0;
 
-/// The built-in default scene's ambient intensity, background (linear RGB) and reflection
-/// depth, which a model is shown with. Written out rather than taken from a parsed
-/// `scenes/default.toml`: parsing it took 0.4–0.8 ms of the 3.8–4.0 ms that `rastray info`
-/// took on a one-triangle OBJ. A test keeps them equal to the file's.
+// A model is shown with the built-in default scene's ambient light, background and reflection
+// depth, written out below rather than taken from a parsed `scenes/default.toml`: parsing it
+// took 0.4–0.8 ms of the 3.8–4.0 ms that `rastray info` took on a one-triangle OBJ. A test
+// keeps them equal to the file's.
+
+/// Ambient intensity, as the default scene's.
 const AMBIENT: f32 = 0.08;
+/// Background, linear RGB, as the default scene's.
 const BACKGROUND: Vec3 = Vec3::new(0.04, 0.05, 0.08);
+/// Reflection depth of the ray tracer, as the default scene's.
 const MAX_DEPTH: u32 = 4;
 
 /// Whether `path` names a model file (`.obj`, `.stl`, `.ply`, `.gltf`, `.glb`, any case) by
