@@ -33,7 +33,7 @@ use anyhow::Context;
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 use rastray::mesh::EXPECTED_MODEL;
 use rastray::pool_thread::on_pool_thread;
-use rastray::render::{MAX_THREADS, Size, SizeError};
+use rastray::render::{MAX_THREADS, Size, thread_count};
 use rastray::scene::{SceneError, UpAxis};
 use rastray::terminal_image::ColorMode;
 use rastray::text_escape::Escaped;
@@ -357,16 +357,15 @@ pub fn build_world_with(
     Ok(report)
 }
 
-/// Parses a count of render threads, 1 to [`MAX_THREADS`], for clap: refused with the words of
-/// [`RenderOptions::check`](rastray::render::RenderOptions::check), which bounds every render.
+/// Parses a count of render threads, 1 to [`MAX_THREADS`], for clap: bounded by
+/// [`thread_count`], as [`RenderOptions::check`](rastray::render::RenderOptions::check) bounds
+/// every render.
 pub fn parse_threads(s: &str) -> Result<NonZeroUsize, String> {
     let count: usize = s
         .trim()
         .parse()
         .map_err(|_| format!("`{s}` is not a thread count: use 1 to {MAX_THREADS}"))?;
-    NonZeroUsize::new(count)
-        .filter(|n| n.get() <= MAX_THREADS)
-        .ok_or_else(|| SizeError::Threads { threads: count }.to_string())
+    thread_count(count).map_err(|e| e.to_string())
 }
 
 /// Parses WIDTHxHEIGHT for clap.

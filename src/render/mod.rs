@@ -44,6 +44,7 @@ pub use frame::{Frame, decode_srgb, decode_srgb16, encode_srgb16};
 pub use mode_shading::{EDGE_HALF_WIDTH, objects_without_uvs};
 pub use options::{
     MAX_DIMENSION, MAX_SAMPLES, MAX_SAMPLES_TOTAL, MAX_THREADS, RenderOptions, Size, SizeError,
+    thread_count,
 };
 pub use overlay::{
     Grid, OverlayKind, Overlays, UnknownOverlay, ground_grid, overlay_bounds, overlay_colors,

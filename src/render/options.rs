@@ -130,10 +130,8 @@ impl RenderOptions {
     /// Checks the size, sample and thread limits: every render path calls this before it
     /// allocates a frame or starts a pool.
     pub fn check(&self) -> Result<(), SizeError> {
-        if let Some(threads) = self.threads.filter(|n| n.get() > MAX_THREADS) {
-            return Err(SizeError::Threads {
-                threads: threads.get(),
-            });
+        if let Some(threads) = self.threads {
+            thread_count(threads.get())?;
         }
         let (width, height, samples) = (self.width, self.height, self.samples);
         if !(1..=MAX_DIMENSION).contains(&width) || !(1..=MAX_DIMENSION).contains(&height) {
@@ -156,6 +154,14 @@ impl RenderOptions {
         }
         Ok(())
     }
+}
+
+/// `threads` as a render's thread count, if it is 1 to [`MAX_THREADS`]: the one bound that
+/// [`RenderOptions::check`] and the command line's `--threads` share.
+pub fn thread_count(threads: usize) -> Result<NonZeroUsize, SizeError> {
+    NonZeroUsize::new(threads)
+        .filter(|n| n.get() <= MAX_THREADS)
+        .ok_or(SizeError::Threads { threads })
 }
 
 #[cfg(test)]
